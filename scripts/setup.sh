@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# Installs the Debian packages reftrack needs to build, test and run its demo.
+# Idempotent and non-interactive; works as root or through sudo.
+set -euo pipefail
+
+PACKAGES=(
+  build-essential cmake pkg-config git
+  libopencv-dev libopencv-contrib-dev   # OpenCV 4.6 with contrib (aruco)
+  libeigen3-dev libceres-dev            # math, least squares
+  libglfw3-dev libglm-dev               # window, GL math
+  libimgui-dev libstb-dev               # Dear ImGui 1.86 (+ its stb dependency)
+  libosmesa6-dev libegl-dev             # off-screen GL (OSMesa; EGL surfaceless kept possible)
+  python3-glad                          # GL loader generator (build time)
+  libtinyobjloader-dev libcli11-dev libgtest-dev
+  xvfb xauth                            # window tests on a headless machine
+  ffmpeg                                # ffprobe checks recorded MP4s; video codecs
+)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "setup: all ${#PACKAGES[@]} Debian packages already installed"
+  exit 0
+fi
+
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then
+  if command -v sudo >/dev/null 2>&1; then SUDO="sudo"; else
+    echo "setup: need root or sudo to install: ${missing[*]}" >&2
+    exit 1
+  fi
+fi
+
+echo "setup: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -q
+$SUDO env DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends "${missing[@]}"

@@ -1,0 +1,111 @@
+#include "engine/geometry/PinholeCamera.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "TestPaths.hpp"
+#include "engine/core/Error.hpp"
+
+using namespace reftrack;
+
+namespace {
+
+std::filesystem::path writeFile(const std::filesystem::path& dir, const std::string& name,
+                                const std::string& text) {
+  std::ofstream(dir / name) << text;
+  return dir / name;
+}
+
+std::string cameraYaml(const std::string& width, const std::string& K, const std::string& D) {
+  return "%YAML:1.0\n---\nimage_width: " + width + "\nimage_height: 480\n" +
+         "camera_matrix: !!opencv-matrix\n   rows: 3\n   cols: 3\n   dt: d\n   data: [" + K + "]\n" +
+         "distortion_coefficients: !!opencv-matrix\n   rows: 5\n   cols: 1\n   dt: d\n   data: [" +
+         D + "]\n";
+}
+
+std::string loadError(const std::filesystem::path& file) {
+  try {
+    PinholeCamera::load(file);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(PinholeCamera, RoundTripsThroughYaml) {
+  const auto dir = test::freshTempDir("PinholeCamera_RoundTrip");
+  Eigen::Matrix3d K;
+  K << 520.5, 0, 319.25, 0, 521.75, 240.5, 0, 0, 1;
+  const PinholeCamera cam(K, {640, 480}, {0.1, -0.2, 0.001, -0.002, 0.05});
+  cam.save(dir / "camera.yml");
+  const PinholeCamera back = PinholeCamera::load(dir / "camera.yml");
+  EXPECT_EQ(back.imageSize(), cam.imageSize());
+  EXPECT_LT((back.K() - K).norm(), 1e-12);
+  ASSERT_EQ(back.distortion().size(), 5u);
+  for (size_t i = 0; i < 5; ++i) EXPECT_DOUBLE_EQ(back.distortion()[i], cam.distortion()[i]);
+}
+
+TEST(PinholeCamera, ReadsOpenCvCalibrationSampleOutput) {
+  const auto data = test::sharedDataDir();
+  if (!data) GTEST_SKIP() << "../shared/data not present: real-data check skipped";
+  const PinholeCamera cam = PinholeCamera::load(*data / "chessboard-calib" / "left_intrinsics.yml");
+  EXPECT_NEAR(cam.fx(), 535.916, 0.01);
+  EXPECT_GT(cam.fx(), 100.0);
+  EXPECT_EQ(cam.imageSize(), cv::Size(640, 480));
+}
+
+TEST(PinholeCamera, EachMalformedFileGivesItsOwnError) {
+  const auto dir = test::freshTempDir("PinholeCamera_Malformed");
+  const std::string goodK = "500, 0, 320, 0, 500, 240, 0, 0, 1", D = "0, 0, 0, 0, 0";
+  EXPECT_EQ(loadError(writeFile(dir, "good.yml", cameraYaml("640", goodK, D))), "");
+  EXPECT_NE(loadError(dir / "absent.yml").find("does not exist"), std::string::npos);
+  EXPECT_NE(loadError(writeFile(dir, "garbage.yml", "%YAML:1.0\n---\n: : [\n")).find("camera file"),
+            std::string::npos);
+  EXPECT_NE(loadError(writeFile(dir, "nowidth.yml",
+                                "%YAML:1.0\n---\nimage_height: 480\n"))
+                .find("missing key 'image_width'"),
+            std::string::npos);
+  EXPECT_NE(loadError(writeFile(dir, "zero.yml", cameraYaml("640", "0, 0, 320, 0, 500, 240, 0, 0, 1", D)))
+                .find("fx must be positive"),
+            std::string::npos);
+  EXPECT_NE(loadError(writeFile(dir, "neg.yml", cameraYaml("640", "500, 0, 320, 0, -5, 240, 0, 0, 1", D)))
+                .find("fy must be positive"),
+            std::string::npos);
+  EXPECT_NE(loadError(writeFile(dir, "nan.yml", cameraYaml("640", "500, 0, .nan, 0, 500, 240, 0, 0, 1", D)))
+                .find("NaN"),
+            std::string::npos);
+  EXPECT_NE(loadError(writeFile(dir, "nandist.yml", cameraYaml("640", goodK, "0, .nan, 0, 0, 0")))
+                .find("distortion_coefficients contain NaN"),
+            std::string::npos);
+  EXPECT_NE(loadError(writeFile(dir, "size.yml", cameraYaml("-3", goodK, D))).find("must be positive"),
+            std::string::npos);
+  EXPECT_NE(loadError(writeFile(dir, "pp.yml", cameraYaml("640", "500, 0, 900, 0, 500, 240, 0, 0, 1", D)))
+                .find("principal point"),
+            std::string::npos);
+}
+
+TEST(PinholeCamera, ScaledCameraKeepsPixelCentreConvention) {
+  const PinholeCamera cam = PinholeCamera::fromFieldOfView({320, 240}, 60.0);
+  const PinholeCamera big = cam.scaled(2.0);
+  const Eigen::Vector3d X(0.1, -0.05, 1.3);
+  // A point at pixel p in the small image lies at (p + 0.5) * 2 - 0.5 in the doubled one.
+  const Eigen::Vector2d p = cam.project(X), q = big.project(X);
+  EXPECT_NEAR(q.x(), (p.x() + 0.5) * 2 - 0.5, 1e-9);
+  EXPECT_NEAR(q.y(), (p.y() + 0.5) * 2 - 0.5, 1e-9);
+  EXPECT_EQ(big.imageSize(), cv::Size(640, 480));
+}
+
+TEST(PinholeCamera, UndistortInvertsDistortedProjection) {
+  Eigen::Matrix3d K;
+  K << 500, 0, 320, 0, 500, 240, 0, 0, 1;
+  const PinholeCamera cam(K, {640, 480}, {-0.25, 0.1, 0.001, 0.0005, 0.0});
+  const Eigen::Vector3d X(0.3, -0.2, 1.0);
+  const Eigen::Vector2d d = cam.projectDistorted(X);
+  const auto u = cam.undistortPixels({cv::Point2f(static_cast<float>(d.x()), static_cast<float>(d.y()))});
+  const Eigen::Vector2d ideal = cam.project(X);
+  EXPECT_NEAR(u[0].x, ideal.x(), 0.01);
+  EXPECT_NEAR(u[0].y, ideal.y(), 0.01);
+}
