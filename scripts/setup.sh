@@ -14,6 +14,7 @@ PACKAGES=(
   libtinyobjloader-dev libcli11-dev libgtest-dev
   xvfb xauth                            # window tests on a headless machine
   ffmpeg                                # ffprobe checks recorded MP4s; video codecs
+  ccache                                # faster rebuilds
 )
 
 missing=()

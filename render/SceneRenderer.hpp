@@ -1,0 +1,28 @@
+#pragma once
+// SceneRenderer: draws textured triangle meshes with a pinhole camera into an off-screen
+// target and reads the result back. Camera: K (3x3) and a world->camera pose in OpenCV axes
+// (x right, y down, z forward). A world point X lands exactly at pixel K(RX+t), with pixel
+// centres at integer coordinates (OpenCV convention). Needs a current GL 3.3 context.
+#include <Eigen/Core>
+#include <cstdint>
+#include <memory>
+#include <opencv2/core.hpp>
+#include <vector>
+
+namespace reftrack::render {
+
+struct TexturedMesh {
+  std::vector<Eigen::Vector3f> positions;  // world coordinates (metres)
+  std::vector<Eigen::Vector2f> uvs;        // texture coordinates in [0,1], (0,0) = top-left of `texture`
+  std::vector<std::uint32_t> indices;      // triangles
+  cv::Mat texture;                         // CV_8UC3 (BGR) or CV_8UC1
+};
+
+struct PinholeView {
+  Eigen::Matrix3d K = Eigen::Matrix3d::Identity();
+  cv::Size imageSize{0, 0};
+  Eigen::Matrix4d worldToCamera = Eigen::Matrix4d::Identity();  // OpenCV axes
+  double nearPlane = 0.01, farPlane = 100.0;                      // metres
+};
+
+}  // namespace reftrack::render
