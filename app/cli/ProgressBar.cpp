@@ -1,7 +1,8 @@
 #include "app/cli/ProgressBar.hpp"
 
-#include <cstdio>
 #include <unistd.h>
+
+#include <cstdio>
 
 namespace reftrack::app {
 

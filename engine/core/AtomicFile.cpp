@@ -1,8 +1,9 @@
 #include "engine/core/AtomicFile.hpp"
 
+#include <unistd.h>
+
 #include <atomic>
 #include <string>
-#include <unistd.h>
 
 #include "engine/core/Error.hpp"
 

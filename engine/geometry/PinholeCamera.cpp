@@ -13,7 +13,9 @@ namespace reftrack {
 
 namespace {
 
-std::string where(const std::filesystem::path& file) { return "camera file '" + file.string() + "'"; }
+std::string where(const std::filesystem::path& file) {
+  return "camera file '" + file.string() + "'";
+}
 
 }  // namespace
 
@@ -23,8 +25,10 @@ PinholeCamera::PinholeCamera(const Eigen::Matrix3d& K, cv::Size imageSize,
 
 PinholeCamera PinholeCamera::fromFieldOfView(cv::Size imageSize, double horizontalFovDeg) {
   if (!(horizontalFovDeg > 0.0 && horizontalFovDeg < 180.0))
-    throw Error("field of view must be in (0, 180) degrees, got " + std::to_string(horizontalFovDeg));
-  const double f = 0.5 * imageSize.width / std::tan(0.5 * horizontalFovDeg * std::numbers::pi / 180.0);
+    throw Error("field of view must be in (0, 180) degrees, got " +
+                std::to_string(horizontalFovDeg));
+  const double f =
+      0.5 * imageSize.width / std::tan(0.5 * horizontalFovDeg * std::numbers::pi / 180.0);
   Eigen::Matrix3d K;
   K << f, 0, (imageSize.width - 1) * 0.5, 0, f, (imageSize.height - 1) * 0.5, 0, 0, 1;
   PinholeCamera cam(K, imageSize);
@@ -47,8 +51,8 @@ bool PinholeCamera::hasDistortion() const {
 
 void PinholeCamera::check() const {
   if (size_.width <= 0 || size_.height <= 0)
-    throw Error("image_width and image_height must be positive, got " + std::to_string(size_.width) +
-                "x" + std::to_string(size_.height));
+    throw Error("image_width and image_height must be positive, got " +
+                std::to_string(size_.width) + "x" + std::to_string(size_.height));
   if (!K_.allFinite()) throw Error("camera_matrix contains NaN or infinity");
   if (!(fx() > 0.0)) throw Error("camera_matrix: focal length fx must be positive");
   if (!(fy() > 0.0)) throw Error("camera_matrix: focal length fy must be positive");
@@ -139,7 +143,8 @@ Eigen::Vector2d PinholeCamera::projectDistorted(const Eigen::Vector3d& X) const 
   return {img[0].x, img[0].y};
 }
 
-std::vector<cv::Point2f> PinholeCamera::undistortPixels(const std::vector<cv::Point2f>& pixels) const {
+std::vector<cv::Point2f> PinholeCamera::undistortPixels(
+    const std::vector<cv::Point2f>& pixels) const {
   if (!hasDistortion() || pixels.empty()) return pixels;
   std::vector<cv::Point2f> out;
   cv::undistortPoints(pixels, out, Kcv(), dist_, cv::noArray(), Kcv());
@@ -153,8 +158,9 @@ PinholeCamera PinholeCamera::scaled(double s) const {
   K(0, 1) *= s;
   K(0, 2) = (K_(0, 2) + 0.5) * s - 0.5;
   K(1, 2) = (K_(1, 2) + 0.5) * s - 0.5;
-  return PinholeCamera(K, cv::Size(static_cast<int>(std::lround(size_.width * s)),
-                                   static_cast<int>(std::lround(size_.height * s))),
+  return PinholeCamera(K,
+                       cv::Size(static_cast<int>(std::lround(size_.width * s)),
+                                static_cast<int>(std::lround(size_.height * s))),
                        dist_);
 }
 

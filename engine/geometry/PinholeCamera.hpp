@@ -15,8 +15,7 @@ namespace reftrack {
 class PinholeCamera {
  public:
   PinholeCamera() = default;
-  PinholeCamera(const Eigen::Matrix3d& K, cv::Size imageSize,
-                std::vector<double> distortion = {});
+  PinholeCamera(const Eigen::Matrix3d& K, cv::Size imageSize, std::vector<double> distortion = {});
   // From a horizontal field of view (degrees), principal point at the image centre.
   static PinholeCamera fromFieldOfView(cv::Size imageSize, double horizontalFovDeg);
 

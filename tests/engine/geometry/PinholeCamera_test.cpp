@@ -19,7 +19,8 @@ std::filesystem::path writeFile(const std::filesystem::path& dir, const std::str
 
 std::string cameraYaml(const std::string& width, const std::string& K, const std::string& D) {
   return "%YAML:1.0\n---\nimage_width: " + width + "\nimage_height: 480\n" +
-         "camera_matrix: !!opencv-matrix\n   rows: 3\n   cols: 3\n   dt: d\n   data: [" + K + "]\n" +
+         "camera_matrix: !!opencv-matrix\n   rows: 3\n   cols: 3\n   dt: d\n   data: [" + K +
+         "]\n" +
          "distortion_coefficients: !!opencv-matrix\n   rows: 5\n   cols: 1\n   dt: d\n   data: [" +
          D + "]\n";
 }
@@ -64,27 +65,31 @@ TEST(PinholeCamera, EachMalformedFileGivesItsOwnError) {
   EXPECT_NE(loadError(dir / "absent.yml").find("does not exist"), std::string::npos);
   EXPECT_NE(loadError(writeFile(dir, "garbage.yml", "%YAML:1.0\n---\n: : [\n")).find("camera file"),
             std::string::npos);
-  EXPECT_NE(loadError(writeFile(dir, "nowidth.yml",
-                                "%YAML:1.0\n---\nimage_height: 480\n"))
+  EXPECT_NE(loadError(writeFile(dir, "nowidth.yml", "%YAML:1.0\n---\nimage_height: 480\n"))
                 .find("missing key 'image_width'"),
             std::string::npos);
-  EXPECT_NE(loadError(writeFile(dir, "zero.yml", cameraYaml("640", "0, 0, 320, 0, 500, 240, 0, 0, 1", D)))
-                .find("fx must be positive"),
-            std::string::npos);
-  EXPECT_NE(loadError(writeFile(dir, "neg.yml", cameraYaml("640", "500, 0, 320, 0, -5, 240, 0, 0, 1", D)))
-                .find("fy must be positive"),
-            std::string::npos);
-  EXPECT_NE(loadError(writeFile(dir, "nan.yml", cameraYaml("640", "500, 0, .nan, 0, 500, 240, 0, 0, 1", D)))
+  EXPECT_NE(
+      loadError(writeFile(dir, "zero.yml", cameraYaml("640", "0, 0, 320, 0, 500, 240, 0, 0, 1", D)))
+          .find("fx must be positive"),
+      std::string::npos);
+  EXPECT_NE(
+      loadError(writeFile(dir, "neg.yml", cameraYaml("640", "500, 0, 320, 0, -5, 240, 0, 0, 1", D)))
+          .find("fy must be positive"),
+      std::string::npos);
+  EXPECT_NE(loadError(writeFile(dir, "nan.yml",
+                                cameraYaml("640", "500, 0, .nan, 0, 500, 240, 0, 0, 1", D)))
                 .find("NaN"),
             std::string::npos);
   EXPECT_NE(loadError(writeFile(dir, "nandist.yml", cameraYaml("640", goodK, "0, .nan, 0, 0, 0")))
                 .find("distortion_coefficients contain NaN"),
             std::string::npos);
-  EXPECT_NE(loadError(writeFile(dir, "size.yml", cameraYaml("-3", goodK, D))).find("must be positive"),
-            std::string::npos);
-  EXPECT_NE(loadError(writeFile(dir, "pp.yml", cameraYaml("640", "500, 0, 900, 0, 500, 240, 0, 0, 1", D)))
-                .find("principal point"),
-            std::string::npos);
+  EXPECT_NE(
+      loadError(writeFile(dir, "size.yml", cameraYaml("-3", goodK, D))).find("must be positive"),
+      std::string::npos);
+  EXPECT_NE(
+      loadError(writeFile(dir, "pp.yml", cameraYaml("640", "500, 0, 900, 0, 500, 240, 0, 0, 1", D)))
+          .find("principal point"),
+      std::string::npos);
 }
 
 TEST(PinholeCamera, ScaledCameraKeepsPixelCentreConvention) {
@@ -104,7 +109,8 @@ TEST(PinholeCamera, UndistortInvertsDistortedProjection) {
   const PinholeCamera cam(K, {640, 480}, {-0.25, 0.1, 0.001, 0.0005, 0.0});
   const Eigen::Vector3d X(0.3, -0.2, 1.0);
   const Eigen::Vector2d d = cam.projectDistorted(X);
-  const auto u = cam.undistortPixels({cv::Point2f(static_cast<float>(d.x()), static_cast<float>(d.y()))});
+  const auto u =
+      cam.undistortPixels({cv::Point2f(static_cast<float>(d.x()), static_cast<float>(d.y()))});
   const Eigen::Vector2d ideal = cam.project(X);
   EXPECT_NEAR(u[0].x, ideal.x(), 0.01);
   EXPECT_NEAR(u[0].y, ideal.y(), 0.01);

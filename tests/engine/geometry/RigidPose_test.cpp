@@ -1,6 +1,7 @@
 #include "engine/geometry/RigidPose.hpp"
 
 #include <gtest/gtest.h>
+
 #include <opencv2/calib3d.hpp>
 #include <random>
 
@@ -28,8 +29,10 @@ TEST(RigidPose, Vector6RoundTripMatchesRodrigues) {
 
 TEST(RigidPose, CompositionFollowsSpecConventions) {
   // T_k = T_Ak * T_A: apply T_A first.
-  const RigidPose TA = RigidPose::fromVector6((Vector6d() << 0.1, -0.2, 1.0, 0.1, 0.2, -0.3).finished());
-  const RigidPose TAk = RigidPose::fromVector6((Vector6d() << -0.05, 0.0, 0.02, 0.0, 0.1, 0.05).finished());
+  const RigidPose TA =
+      RigidPose::fromVector6((Vector6d() << 0.1, -0.2, 1.0, 0.1, 0.2, -0.3).finished());
+  const RigidPose TAk =
+      RigidPose::fromVector6((Vector6d() << -0.05, 0.0, 0.02, 0.0, 0.1, 0.05).finished());
   const Eigen::Vector3d X(0.3, -0.1, 0.2);
   EXPECT_LT(((TAk * TA) * X - TAk * (TA * X)).norm(), 1e-12);
   EXPECT_LT(((TA.inverse() * TA) * X - X).norm(), 1e-12);
@@ -42,7 +45,8 @@ TEST(RigidPose, CompositionFollowsSpecConventions) {
 
 TEST(RigidPose, DistancesMeasureDegreesAndMetres) {
   const RigidPose a;
-  const RigidPose b = RigidPose::fromVector6((Vector6d() << 0.003, 0.004, 0, 0, 0, 0.01).finished());
+  const RigidPose b =
+      RigidPose::fromVector6((Vector6d() << 0.003, 0.004, 0, 0, 0, 0.01).finished());
   EXPECT_NEAR(RigidPose::translationDistance(a, b), 0.005, 1e-12);
   EXPECT_NEAR(RigidPose::rotationDistance(a, b), 0.01, 1e-12);
 }

@@ -22,7 +22,9 @@ TEST(TumTrajectory, RoundTripsWorldToCameraPoses) {
   ASSERT_EQ(back.poses.size(), traj.poses.size());
   for (size_t i = 0; i < traj.poses.size(); ++i) {
     EXPECT_NEAR(back.poses[i].timestamp, traj.poses[i].timestamp, 1e-6);
-    EXPECT_LT((back.poses[i].worldToCamera.matrix4() - traj.poses[i].worldToCamera.matrix4()).norm(), 1e-12);
+    EXPECT_LT(
+        (back.poses[i].worldToCamera.matrix4() - traj.poses[i].worldToCamera.matrix4()).norm(),
+        1e-12);
   }
 }
 

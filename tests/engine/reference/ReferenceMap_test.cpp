@@ -1,0 +1,94 @@
+#include "engine/reference/ReferenceMap.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+#include <sstream>
+
+#include "TestPaths.hpp"
+#include "engine/core/Error.hpp"
+
+using namespace reftrack;
+
+namespace {
+
+ReferenceMap makeMap() {
+  ReferenceMap m;
+  m.camera = PinholeCamera::fromFieldOfView({160, 120}, 60.0);
+  m.T_A = RigidPose::fromVector6((Vector6d() << 0, 0, 1, 0.1, 0, 0).finished());
+  m.T_B = RigidPose::fromVector6((Vector6d() << -0.2, 0, 1, 0.1, -0.2, 0).finished());
+  m.imageA = cv::Mat(120, 160, CV_8UC3);
+  m.imageB = cv::Mat(120, 160, CV_8UC3);
+  cv::randu(m.imageA, 0, 255);
+  cv::randu(m.imageB, 0, 255);
+  m.cornersA = {{{10.5f, 20.25f}, 30.f}, {{100.f, 60.f}, 12.5f}};
+  m.cornersB = {{{12.f, 21.f}, 28.f}};
+  m.matches = {{0, 0, Eigen::Vector3d(0.1, -0.05, 1.2)}};
+  m.poseSource = "test";
+  return m;
+}
+
+std::string loadError(const std::filesystem::path& dir) {
+  try {
+    ReferenceMap::load(dir);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(ReferenceMap, RoundTripsEveryField) {
+  const auto dir = test::freshTempDir("ReferenceMap_RoundTrip");
+  const ReferenceMap m = makeMap();
+  m.save(dir / "scene");
+  const ReferenceMap back = ReferenceMap::load(dir / "scene");
+  EXPECT_LT((back.T_A.matrix4() - m.T_A.matrix4()).norm(), 1e-12);
+  EXPECT_LT((back.T_B.matrix4() - m.T_B.matrix4()).norm(), 1e-12);
+  EXPECT_LT((back.camera.K() - m.camera.K()).norm(), 1e-12);
+  ASSERT_EQ(back.cornersA.size(), 2u);
+  EXPECT_FLOAT_EQ(back.cornersA[0].pixel.y, 20.25f);
+  EXPECT_FLOAT_EQ(back.cornersA[1].rmsContrast, 12.5f);
+  ASSERT_EQ(back.matches.size(), 1u);
+  EXPECT_LT((back.matches[0].pointA - m.matches[0].pointA).norm(), 1e-12);
+  EXPECT_EQ(cv::norm(back.imageA, m.imageA, cv::NORM_INF), 0.0);
+}
+
+TEST(ReferenceMap, RefusesBrokenMapsWithTheirOwnMessages) {
+  const auto dir = test::freshTempDir("ReferenceMap_Broken");
+  makeMap().save(dir / "ok");
+  const std::string yml = [&] {
+    std::ifstream in(dir / "ok" / "map.yml");
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+  }();
+  const auto variant = [&](const std::string& name, const std::string& text,
+                           bool withImages = true) {
+    std::filesystem::create_directories(dir / name);
+    std::ofstream(dir / name / "map.yml") << text;
+    if (withImages) {
+      std::filesystem::copy_file(dir / "ok" / "reference_a.png", dir / name / "reference_a.png");
+      std::filesystem::copy_file(dir / "ok" / "reference_b.png", dir / name / "reference_b.png");
+    }
+    return dir / name;
+  };
+  EXPECT_NE(loadError(dir / "absent").find("does not exist"), std::string::npos);
+  EXPECT_NE(loadError(variant("truncated", yml.substr(0, yml.size() / 2))).find("truncated"),
+            std::string::npos);
+  std::string v2 = yml;
+  v2.replace(v2.find("version: 1"), 10, "version: 7");
+  EXPECT_NE(loadError(variant("version", v2)).find("format version 7"), std::string::npos);
+  EXPECT_NE(loadError(variant("noimages", yml, false)).find("is missing"), std::string::npos);
+  const auto small = variant("small", yml);
+  cv::imwrite((small / "reference_b.png").string(), cv::Mat(60, 80, CV_8UC3, cv::Scalar(0)));
+  EXPECT_NE(loadError(small).find("but the camera is 160x120"), std::string::npos);
+}
+
+TEST(ReferenceMap, RefusesIdenticalReferencePoses) {
+  ReferenceMap m = makeMap();
+  m.T_B = m.T_A;
+  EXPECT_THROW(m.check(), Error);
+}
