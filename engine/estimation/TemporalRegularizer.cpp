@@ -1,0 +1,39 @@
+#include "engine/estimation/TemporalRegularizer.hpp"
+
+namespace reftrack {
+
+TemporalRegularizer::TemporalRegularizer(ArMotionModel model, PoseEstimatorKind kind, double alpha)
+    : model_(std::move(model)), kind_(kind), alpha_(alpha) {}
+
+void TemporalRegularizer::reset() {
+  history_.clear();
+  omega_ = Matrix6d::Identity();
+}
+
+std::optional<Vector6d> TemporalRegularizer::predictNext() const {
+  if (history_.empty()) return std::nullopt;
+  return model_.predict(history_);
+}
+
+std::optional<PoseEstimate> TemporalRegularizer::step(const RegularizedPoseEstimator& estimator,
+                                                      const PoseMeasurements& m,
+                                                      const std::optional<Vector6d>& linearStart) {
+  PoseEstimate e;
+  if (history_.empty()) {
+    if (!linearStart) return std::nullopt;
+    e = estimator.estimateStandard(m, *linearStart);
+  } else if (kind_ == PoseEstimatorKind::StandardLeastSquares) {
+    e = estimator.estimateStandard(m, history_.front());
+  } else {
+    const Vector6d xPred = model_.predict(history_);
+    const Matrix6d omegaPred = omega_ + model_.processNoise();
+    e = estimator.estimateRegularised(m, xPred, omegaPred, alpha_);
+  }
+  if (!e.x.allFinite()) return std::nullopt;
+  if (e.covarianceValid) omega_ = e.covariance;
+  history_.push_front(e.x);
+  while (static_cast<int>(history_.size()) > std::max(1, model_.order())) history_.pop_back();
+  return e;
+}
+
+}  // namespace reftrack
