@@ -25,4 +25,32 @@ struct PinholeView {
   double nearPlane = 0.01, farPlane = 100.0;                      // metres
 };
 
+// Holds uploaded meshes (GPU textures and buffers) and draws them.
+class SceneRenderer {
+ public:
+  SceneRenderer();  // needs a current GL 3.3 context with the functions loaded
+  ~SceneRenderer();
+  SceneRenderer(const SceneRenderer&) = delete;
+  SceneRenderer& operator=(const SceneRenderer&) = delete;
+
+  // Uploads a mesh (throws reftrack::Error on inconsistent sizes or an empty texture).
+  void addMesh(const TexturedMesh& mesh);
+  void clearMeshes();
+
+  // Renders all meshes off-screen and returns the BGR image (CV_8UC3) of view.imageSize. With
+  // supersample s > 1 it renders at s times the size with K scaled about pixel centres and
+  // area-averages back down, so the pixel-centre convention above still holds exactly. When
+  // `depthMetres` is given it receives the camera-frame depth z per pixel (CV_32F, 0 where empty)
+  // at view.imageSize.
+  cv::Mat render(const PinholeView& view, int supersample = 1, cv::Mat* depthMetres = nullptr,
+                 const cv::Scalar& clearColourBgr = cv::Scalar(0, 0, 0));
+
+  // Draws into the framebuffer and viewport currently bound (for compositing in the viewer).
+  void draw(const PinholeView& view);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
 }  // namespace reftrack::render

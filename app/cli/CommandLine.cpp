@@ -1,5 +1,6 @@
 #include "app/cli/CommandLine.hpp"
 
+#include <algorithm>
 #include <iostream>
 #include <opencv2/core.hpp>
 
@@ -8,15 +9,34 @@
 
 namespace reftrack::app {
 
+namespace {
+std::vector<std::pair<int, CommandFactory>>& factoryTable() {
+  static std::vector<std::pair<int, CommandFactory>> table;
+  return table;
+}
+}  // namespace
+
+CommandRegistrar::CommandRegistrar(int order, CommandFactory factory) {
+  factoryTable().emplace_back(order, factory);
+}
+
+std::vector<CommandFactory> registeredCommands() {
+  auto table = factoryTable();
+  std::stable_sort(table.begin(), table.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<CommandFactory> out;
+  for (const auto& entry : table) out.push_back(entry.second);
+  return out;
+}
+
 int runCommandLine(int argc, char** argv) {
   CLI::App app{"reftrack: marker-less AR camera tracking against calibrated reference images"};
   app.set_version_flag("--version", std::string("reftrack ") + REFTRACK_VERSION);
   app.require_subcommand(1);
   app.fallthrough(false);
 
-  std::vector<CommandRegistration> commands = {
-      registerSimulateCommand(app),
-  };
+  std::vector<CommandRegistration> commands;
+  for (CommandFactory factory : registeredCommands()) commands.push_back(factory(app));
 
   try {
     app.parse(argc, argv);
