@@ -13,16 +13,16 @@ namespace reftrack::render {
 
 struct TexturedMesh {
   std::vector<Eigen::Vector3f> positions;  // world coordinates (metres)
-  std::vector<Eigen::Vector2f> uvs;        // texture coordinates in [0,1], (0,0) = top-left of `texture`
-  std::vector<std::uint32_t> indices;      // triangles
-  cv::Mat texture;                         // CV_8UC3 (BGR) or CV_8UC1
+  std::vector<Eigen::Vector2f> uvs;  // texture coordinates in [0,1], (0,0) = top-left of `texture`
+  std::vector<std::uint32_t> indices;  // triangles
+  cv::Mat texture;                     // CV_8UC3 (BGR) or CV_8UC1
 };
 
 struct PinholeView {
   Eigen::Matrix3d K = Eigen::Matrix3d::Identity();
   cv::Size imageSize{0, 0};
   Eigen::Matrix4d worldToCamera = Eigen::Matrix4d::Identity();  // OpenCV axes
-  double nearPlane = 0.01, farPlane = 100.0;                      // metres
+  double nearPlane = 0.01, farPlane = 100.0;                    // metres
 };
 
 // Holds uploaded meshes (GPU textures and buffers) and draws them.

@@ -63,16 +63,39 @@ PoseEstimate RegularizedPoseEstimator::solve(const PoseMeasurements& m, const Ve
   // carry the information of one: each is weighted by half (sigma * sqrt 2), which keeps Omega a
   // consistent covariance (checked against the empirical scatter in the tests).
   const double symmetricPair = std::sqrt(2.0);
-  for (const EpipolarMatch& e : m.toA)
-    problem.AddResidualBlock(
-        EpipolarDistanceCost::create(K_, RigidPose(), e.pRef, e.pK, e.sigma * symmetricPair),
-        loss(), x);
-  for (const EpipolarMatch& e : m.toB)
-    problem.AddResidualBlock(
-        EpipolarDistanceCost::create(K_, bToA, e.pRef, e.pK, e.sigma * symmetricPair), loss(), x);
-  for (const ThreeViewMatch& t : m.threeView)
-    problem.AddResidualBlock(ThreeViewReprojectionCost::create(K_, t.pointA, t.pK, t.sigma), loss(),
-                             x);
+  if (options_.huberScale > 0) {
+    // A robust loss acts per match, so each match gets its own residual block.
+    for (const EpipolarMatch& e : m.toA)
+      problem.AddResidualBlock(
+          EpipolarDistanceCost::create(K_, RigidPose(), e.pRef, e.pK, e.sigma * symmetricPair),
+          loss(), x);
+    for (const EpipolarMatch& e : m.toB)
+      problem.AddResidualBlock(
+          EpipolarDistanceCost::create(K_, bToA, e.pRef, e.pK, e.sigma * symmetricPair), loss(), x);
+    for (const ThreeViewMatch& t : m.threeView)
+      problem.AddResidualBlock(ThreeViewReprojectionCost::create(K_, t.pointA, t.pK, t.sigma),
+                               loss(), x);
+  } else {
+    // Plain least squares: one block per term (identical residuals, far less solver overhead).
+    auto batch = [&](const std::vector<EpipolarMatch>& ms) {
+      std::vector<EpipolarDistanceBatchCost::Match> out;
+      for (const EpipolarMatch& e : ms)
+        out.push_back({e.pRef, e.pK, 1.0 / (e.sigma * symmetricPair)});
+      return out;
+    };
+    if (!m.toA.empty())
+      problem.AddResidualBlock(EpipolarDistanceBatchCost::create(K_, RigidPose(), batch(m.toA)),
+                               nullptr, x);
+    if (!m.toB.empty())
+      problem.AddResidualBlock(EpipolarDistanceBatchCost::create(K_, bToA, batch(m.toB)), nullptr,
+                               x);
+    if (!m.threeView.empty()) {
+      std::vector<ThreeViewReprojectionBatchCost::Match> tv;
+      for (const ThreeViewMatch& t : m.threeView) tv.push_back({t.pointA, t.pK, 1.0 / t.sigma});
+      problem.AddResidualBlock(ThreeViewReprojectionBatchCost::create(K_, std::move(tv)), nullptr,
+                               x);
+    }
+  }
   if (xPred && omegaPred && alpha > 0) {
     const Eigen::LLT<Matrix6d> llt(omegaPred->inverse());
     if (llt.info() == Eigen::Success) {
@@ -85,7 +108,9 @@ PoseEstimate RegularizedPoseEstimator::solve(const PoseMeasurements& m, const Ve
   if (problem.NumResidualBlocks() == 0) return result;
 
   ceres::Solver::Options options;
-  options.linear_solver_type = ceres::DENSE_QR;
+  // Six unknowns and hundreds of residuals: the normal equations are tiny and well conditioned
+  // after whitening; measured ~2x faster than DENSE_QR here.
+  options.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
   options.max_num_iterations = options_.maxIterations;
   options.num_threads = 1;
   options.minimizer_progress_to_stdout = false;
@@ -108,11 +133,18 @@ PoseEstimate RegularizedPoseEstimator::solve(const PoseMeasurements& m, const Ve
     for (int k = J.rows[r]; k < J.rows[r + 1]; ++k) row[J.cols[k]] = J.values[k];
     JtJ += row * row.transpose();
   }
-  const Eigen::LDLT<Matrix6d> ldlt(JtJ);
-  if (ldlt.info() == Eigen::Success && ldlt.isPositive() && JtJ.allFinite()) {
-    result.covariance = ldlt.solve(Matrix6d::Identity());
-    result.covarianceValid =
-        result.covariance.allFinite() && result.covariance.diagonal().minCoeff() > 0;
+  // Inverted after Jacobi scaling (unit diagonal): a strong prior makes JtJ's entries span many
+  // orders of magnitude, and the unscaled factorisation then loses positivity to rounding.
+  if (JtJ.allFinite() && JtJ.diagonal().minCoeff() > 0) {
+    const Vector6d d = JtJ.diagonal().cwiseSqrt().cwiseInverse();
+    const Matrix6d A = d.asDiagonal() * JtJ * d.asDiagonal();
+    const Eigen::LLT<Matrix6d> llt(A);
+    if (llt.info() == Eigen::Success) {
+      result.covariance = d.asDiagonal() * llt.solve(Matrix6d::Identity()) * d.asDiagonal();
+      result.covariance = 0.5 * (result.covariance + result.covariance.transpose());
+      result.covarianceValid =
+          result.covariance.allFinite() && result.covariance.diagonal().minCoeff() > 0;
+    }
   }
   return result;
 }

@@ -22,7 +22,7 @@ std::optional<PoseEstimate> TemporalRegularizer::step(const RegularizedPoseEstim
   if (history_.empty()) {
     if (!linearStart) return std::nullopt;
     e = estimator.estimateStandard(m, *linearStart);
-  } else if (kind_ == PoseEstimatorKind::StandardLeastSquares) {
+  } else if (kind_ == PoseEstimatorKind::Standard) {
     e = estimator.estimateStandard(m, history_.front());
   } else {
     const Vector6d xPred = model_.predict(history_);

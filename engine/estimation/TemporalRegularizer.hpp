@@ -7,12 +7,11 @@
 #include <deque>
 #include <optional>
 
+#include "engine/config/PoseParams.hpp"  // PoseEstimatorKind
 #include "engine/estimation/MotionModel.hpp"
 #include "engine/estimation/RegularizedPoseEstimator.hpp"
 
 namespace reftrack {
-
-enum class PoseEstimatorKind { StandardLeastSquares, Regularised };
 
 class TemporalRegularizer {
  public:

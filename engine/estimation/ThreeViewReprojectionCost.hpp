@@ -5,6 +5,7 @@
 #include <ceres/ceres.h>
 
 #include <Eigen/Core>
+#include <vector>
 
 #include "engine/estimation/PoseParameterization.hpp"
 
@@ -17,6 +18,12 @@ struct ThreeViewReprojectionCost {
 
   template <typename T>
   bool operator()(const T* const x, T* residual) const {
+    return evaluate(x, K, P, pK, invSigma, residual);
+  }
+
+  template <typename T>
+  static bool evaluate(const T* const x, const Eigen::Matrix3d& K, const Eigen::Vector3d& P,
+                       const Eigen::Vector2d& pK, double invSigma, T* residual) {
     const double Pa[3] = {P.x(), P.y(), P.z()};
     T Xc[3];
     transformByPoseVector(x, Pa, Xc);
@@ -37,6 +44,35 @@ struct ThreeViewReprojectionCost {
   Eigen::Vector3d P;
   Eigen::Vector2d pK;
   double invSigma;
+};
+
+// All three-view matches in one residual block (2 residuals per match, same values and order as
+// ThreeViewReprojectionCost): one block instead of hundreds keeps the solver's overhead small.
+struct ThreeViewReprojectionBatchCost {
+  struct Match {
+    Eigen::Vector3d P;
+    Eigen::Vector2d pK;
+    double invSigma;
+  };
+  ThreeViewReprojectionBatchCost(const Eigen::Matrix3d& K, std::vector<Match> matches)
+      : K(K), matches(std::move(matches)) {}
+
+  template <typename T>
+  bool operator()(const T* const x, T* residual) const {
+    for (std::size_t i = 0; i < matches.size(); ++i)
+      ThreeViewReprojectionCost::evaluate(x, K, matches[i].P, matches[i].pK, matches[i].invSigma,
+                                          residual + 2 * i);
+    return true;
+  }
+
+  static ceres::CostFunction* create(const Eigen::Matrix3d& K, std::vector<Match> matches) {
+    const int residuals = static_cast<int>(2 * matches.size());
+    return new ceres::AutoDiffCostFunction<ThreeViewReprojectionBatchCost, ceres::DYNAMIC, 6>(
+        new ThreeViewReprojectionBatchCost(K, std::move(matches)), residuals);
+  }
+
+  Eigen::Matrix3d K;
+  std::vector<Match> matches;
 };
 
 }  // namespace reftrack

@@ -69,7 +69,7 @@ std::vector<Vector6d> run(PoseEstimatorKind kind, const Sequence& s) {
 
 TEST(TemporalRegularizer, RegularisedEstimatesJitterLessThanStandardLeastSquares) {
   const Sequence s;
-  const auto standard = run(PoseEstimatorKind::StandardLeastSquares, s);
+  const auto standard = run(PoseEstimatorKind::Standard, s);
   const auto regularised = run(PoseEstimatorKind::Regularised, s);
   const double jStd = jitter(standard, s), jReg = jitter(regularised, s);
   // Paper Fig. 13: the regulariser is visibly smoother. With 40 points at 1 px noise the standard

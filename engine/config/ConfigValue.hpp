@@ -1,0 +1,23 @@
+#pragma once
+// Typed reading of one key of a parameter section (cv::FileNode map). A missing key leaves the
+// value unchanged (the default); a value of the wrong type, NaN or infinity throws
+// reftrack::Error naming "section.key".
+#include <opencv2/core.hpp>
+#include <string>
+
+namespace reftrack {
+
+void readConfigValue(const cv::FileNode& section, const std::string& sectionName,
+                     const std::string& key, double& value);
+void readConfigValue(const cv::FileNode& section, const std::string& sectionName,
+                     const std::string& key, int& value);
+void readConfigValue(const cv::FileNode& section, const std::string& sectionName,
+                     const std::string& key, bool& value);
+void readConfigValue(const cv::FileNode& section, const std::string& sectionName,
+                     const std::string& key, std::string& value);
+
+// Throws reftrack::Error "<field> must be ..." unless value is finite and within [lo, hi].
+void requireFiniteInRange(const std::string& field, double value, double lo, double hi);
+void requireIntInRange(const std::string& field, int value, int lo, int hi);
+
+}  // namespace reftrack

@@ -1,0 +1,21 @@
+#pragma once
+// CorrelationParams: NCC over (2n+1)^2 windows and the narrow-baseline search (paper Sec. 6.1,
+// Eq. 17). The search window is given at 320x240 and scales with the image.
+#include <opencv2/core.hpp>
+
+namespace reftrack {
+
+struct CorrelationParams {
+  int halfWindow = 5;              // n: windows are (2n+1) x (2n+1) pixels
+  double minScore = 0.8;           // keep the best candidate only above this NCC
+  double searchHalfWidthPx = 40;   // candidates within +-this horizontally (at 320x240)
+  double searchHalfHeightPx = 30;  // and +-this vertically (at 320x240)
+  bool symmetricCheck = true;      // keep mutual best pairs only
+
+  int windowSide() const { return 2 * halfWindow + 1; }
+  void check() const;
+  void write(cv::FileStorage& fs) const;
+  void read(const cv::FileNode& node);
+};
+
+}  // namespace reftrack

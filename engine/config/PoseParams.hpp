@@ -1,0 +1,28 @@
+#pragma once
+// PoseParams: 6-DOF pose estimation (paper Sec. 4-5, SPEC §3): standard least squares (Eq. 12)
+// or the temporally regularised criterion (Eq. 13) with an AR(p) motion model.
+#include <opencv2/core.hpp>
+#include <string>
+
+namespace reftrack {
+
+enum class PoseEstimatorKind { Standard, Regularised };
+
+// "standard" / "regularised"; parsing throws reftrack::Error listing the accepted names.
+std::string toString(PoseEstimatorKind kind);
+PoseEstimatorKind parsePoseEstimatorKind(const std::string& text);
+
+struct PoseParams {
+  PoseEstimatorKind estimator = PoseEstimatorKind::Regularised;
+  double alpha = 1.0;               // weight of the prior term in Eq. 13
+  int arOrder = 1;                  // p of the AR(p) motion model
+  double translationSigma = 0.001;  // process noise Q: metres per frame
+  double rotationSigma = 0.001;     // process noise Q: radians per frame
+  std::string motionModelFile;      // optional fitted model (overrides order and Q); "" = none
+
+  void check() const;
+  void write(cv::FileStorage& fs) const;
+  void read(const cv::FileNode& node);
+};
+
+}  // namespace reftrack

@@ -1,0 +1,41 @@
+#pragma once
+// TrackerParams: every tracking parameter in one YAML file (the file `--params` accepts and the
+// viewer's panels edit). Sections: corners, correlation, ransac, homography, wide_baseline, pose,
+// plus `mode: 6dof|homography`. Missing keys keep the paper's defaults.
+#include <filesystem>
+#include <string>
+
+#include "engine/config/CornerParams.hpp"
+#include "engine/config/CorrelationParams.hpp"
+#include "engine/config/HomographyTrackerParams.hpp"
+#include "engine/config/PoseParams.hpp"
+#include "engine/config/RansacParams.hpp"
+#include "engine/config/WideBaselineParams.hpp"
+
+namespace reftrack {
+
+enum class TrackingMode { SixDof, Homography };
+
+// "6dof" / "homography"; parsing throws reftrack::Error listing the accepted names.
+std::string toString(TrackingMode mode);
+TrackingMode parseTrackingMode(const std::string& text);
+
+struct TrackerParams {
+  TrackingMode mode = TrackingMode::SixDof;
+  CornerParams corners;
+  CorrelationParams correlation;
+  RansacParams ransac;
+  HomographyTrackerParams homography;
+  WideBaselineParams wideBaseline;
+  PoseParams pose;
+
+  void check() const;
+  void write(cv::FileStorage& fs) const;  // all sections at the top level of fs
+  void read(const cv::FileNode& root);    // root: the top-level map
+
+  // Throws reftrack::Error naming the file and the key at fault.
+  static TrackerParams load(const std::filesystem::path& file);
+  void save(const std::filesystem::path& file) const;  // atomic (temp file + rename)
+};
+
+}  // namespace reftrack

@@ -1,0 +1,164 @@
+#include "engine/evaluation/TrajectoryEvaluator.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "engine/config/ConfigValue.hpp"
+#include "engine/core/Error.hpp"
+#include "engine/evaluation/TrajectoryAssociation.hpp"
+
+namespace reftrack {
+
+namespace {
+constexpr double kDeg = 180.0 / std::numbers::pi;
+}  // namespace
+
+void EvaluationParams::check() const {
+  requireFiniteInRange("evaluation.max_time_difference", maxTimeDifference, 0.0, 1e6);
+  requireFiniteInRange("evaluation.cube_side", cubeSide, 1e-6, 1e3);
+}
+
+ErrorStats ErrorStats::of(std::vector<double> values) {
+  ErrorStats s;
+  s.count = values.size();
+  if (values.empty()) return s;
+  std::sort(values.begin(), values.end());
+  double sum = 0, sumSq = 0;
+  for (double v : values) sum += v, sumSq += v * v;
+  const double n = static_cast<double>(values.size());
+  s.mean = sum / n;
+  s.rmse = std::sqrt(sumSq / n);
+  s.max = values.back();
+  auto quantile = [&](double q) {
+    const double pos = q * (n - 1);
+    const std::size_t lo = static_cast<std::size_t>(std::floor(pos));
+    const std::size_t hi = std::min(lo + 1, values.size() - 1);
+    return values[lo] + (pos - lo) * (values[hi] - values[lo]);
+  };
+  s.median = quantile(0.5);
+  s.p95 = quantile(0.95);
+  return s;
+}
+
+std::vector<Eigen::Vector3d> cubeVertices(double side) {
+  std::vector<Eigen::Vector3d> v;
+  const double h = 0.5 * side;
+  for (double z : {0.0, side})
+    for (double y : {-h, h})
+      for (double x : {-h, h}) v.emplace_back(x, y, z);
+  return v;
+}
+
+TrajectoryEvaluation evaluateTrajectory(const TumTrajectory& groundTruth,
+                                        const TumTrajectory& estimate,
+                                        const EvaluationParams& params,
+                                        const PinholeCamera* camera) {
+  params.check();
+  if (groundTruth.poses.empty()) throw Error("the ground-truth trajectory holds no poses");
+  if (estimate.poses.empty()) throw Error("the estimated trajectory holds no poses");
+  const std::vector<AssociatedPair> pairs =
+      associateByTimestamp(groundTruth, estimate, params.maxTimeDifference);
+  if (pairs.empty())
+    throw Error("no estimated pose lies within " + std::to_string(params.maxTimeDifference) +
+                " s of a ground-truth timestamp; check the time bases or raise --max-dt");
+
+  TrajectoryEvaluation ev;
+  ev.groundTruthFrames = groundTruth.poses.size();
+  ev.estimateFrames = estimate.poses.size();
+  ev.associatedFrames = pairs.size();
+  ev.trackedFraction = static_cast<double>(pairs.size()) / groundTruth.poses.size();
+
+  if (params.align) {
+    if (pairs.size() < 3) throw Error("--align needs at least 3 associated poses");
+    Eigen::Matrix3Xd src(3, pairs.size()), dst(3, pairs.size());
+    for (std::size_t i = 0; i < pairs.size(); ++i) {
+      src.col(i) = estimate.poses[pairs[i].estimate].worldToCamera.cameraCentre();
+      dst.col(i) = groundTruth.poses[pairs[i].groundTruth].worldToCamera.cameraCentre();
+    }
+    ev.alignment = RigidPose::fromMatrix4(Eigen::umeyama(src, dst, false));
+    ev.aligned = true;
+  }
+  const RigidPose toEstimateWorld = ev.alignment.inverse();
+
+  // Poses of the estimate in the ground-truth world.
+  std::vector<RigidPose> est(pairs.size()), gt(pairs.size());
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    gt[i] = groundTruth.poses[pairs[i].groundTruth].worldToCamera;
+    est[i] = estimate.poses[pairs[i].estimate].worldToCamera * toEstimateWorld;
+  }
+
+  const std::vector<Eigen::Vector3d> cube = cubeVertices(params.cubeSide);
+  std::vector<double> ateT, ateR, cubePx;
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    FrameEvaluation f;
+    f.timestamp = groundTruth.poses[pairs[i].groundTruth].timestamp;
+    f.trueCentre = gt[i].cameraCentre();
+    f.estimatedCentre = est[i].cameraCentre();
+    f.translationErrorMm = 1000.0 * (f.trueCentre - f.estimatedCentre).norm();
+    f.rotationErrorDeg = RigidPose::rotationDistance(gt[i], est[i]) * kDeg;
+    ateT.push_back(f.translationErrorMm);
+    ateR.push_back(f.rotationErrorDeg);
+    if (camera) {
+      double sum = 0;
+      int n = 0;
+      for (const Eigen::Vector3d& X : cube) {
+        const Eigen::Vector3d a = gt[i] * X, b = est[i] * X;
+        if (a.z() <= 0 || b.z() <= 0) continue;  // behind a camera: no image position
+        const double e = (camera->project(a) - camera->project(b)).norm();
+        cubePx.push_back(e);
+        sum += e, ++n;
+      }
+      if (n > 0) f.cubeErrorPx = sum / n;
+    }
+    ev.frames.push_back(f);
+  }
+  ev.ateTranslationMm = ErrorStats::of(ateT);
+  ev.ateRotationDeg = ErrorStats::of(ateR);
+  if (camera) ev.cubeErrorPx = ErrorStats::of(cubePx);
+
+  std::vector<double> rpeT, rpeR;
+  for (std::size_t i = 1; i < pairs.size(); ++i) {
+    const RigidPose dGt = gt[i] * gt[i - 1].inverse(), dEst = est[i] * est[i - 1].inverse();
+    const RigidPose e = dGt.inverse() * dEst;
+    rpeT.push_back(1000.0 * e.translation().norm());
+    rpeR.push_back(RigidPose::rotationDistance(e, RigidPose::identity()) * kDeg);
+    ev.rpeTimestamps.push_back(ev.frames[i].timestamp);
+  }
+  ev.rpeTranslationMm = ErrorStats::of(rpeT);
+  ev.rpeRotationDeg = ErrorStats::of(rpeR);
+  ev.rpeTranslationMmPerPair = rpeT;
+  ev.rpeRotationDegPerPair = rpeR;
+
+  // Jitter over runs of three consecutive ground-truth frames (see the header).
+  double sumSqMm = 0, sumSqPx = 0;
+  std::size_t nMm = 0, nPx = 0;
+  for (std::size_t i = 1; i + 1 < pairs.size(); ++i) {
+    if (pairs[i].groundTruth != pairs[i - 1].groundTruth + 1 ||
+        pairs[i + 1].groundTruth != pairs[i].groundTruth + 1)
+      continue;
+    for (const Eigen::Vector3d& X : cube) {
+      Eigen::Vector3d e[3];
+      Eigen::Vector2d p[3];
+      bool visible = true;
+      for (int k = 0; k < 3; ++k) {
+        const Eigen::Vector3d a = gt[i - 1 + k] * X, b = est[i - 1 + k] * X;
+        e[k] = b - a;
+        visible = visible && a.z() > 0 && b.z() > 0;
+        if (camera && visible) p[k] = camera->project(b) - camera->project(a);
+      }
+      const Eigen::Vector3d a3 = e[2] - 2 * e[1] + e[0];
+      sumSqMm += 1e6 * a3.squaredNorm(), nMm += 3;
+      if (camera && visible) {
+        const Eigen::Vector2d a2 = p[2] - 2 * p[1] + p[0];
+        sumSqPx += a2.squaredNorm(), nPx += 2;
+      }
+    }
+  }
+  if (nMm > 0) ev.jitterMm = std::sqrt(sumSqMm / nMm / 6.0);
+  if (nPx > 0) ev.jitterPx = std::sqrt(sumSqPx / nPx / 6.0);
+  return ev;
+}
+
+}  // namespace reftrack

@@ -1,0 +1,70 @@
+#pragma once
+// TrajectoryEvaluator: compares an estimated camera trajectory with ground truth (both TUM files,
+// world = marker frame, so no alignment unless asked). Reports
+//  - ATE: per associated frame, the camera-centre distance (mm) and the rotation angle (deg);
+//  - RPE: per consecutive pair of associated frames, the error of the relative motion
+//    E = D_gt^-1 D_est with D = T_k T_{k-1}^-1 (translation mm, rotation deg);
+//  - cube reprojection error (needs the camera): a virtual cube of side cubeSide at the world
+//    origin standing on z = 0 (z up out of the marker), vertices projected ideally (K, no lens
+//    distortion) through both poses; statistics over all vertices of all frames (pixels);
+//  - jitter: for runs of three consecutive ground-truth frames that all have an estimate, the
+//    second difference a_k = e_{k+1} - 2 e_k + e_{k-1} of the cube-vertex error e_k (estimate minus
+//    truth, camera frame) removes the smooth motion and any slowly varying bias; for white noise
+//    of SD s per coordinate, var(a) = 6 s^2, so jitter = sqrt(mean(a^2) / 6) (mm, and px in the
+//    image when the camera is given);
+//  - tracked fraction: ground-truth frames with an associated estimate.
+#include <optional>
+#include <vector>
+
+#include "engine/geometry/PinholeCamera.hpp"
+#include "engine/geometry/TumTrajectory.hpp"
+
+namespace reftrack {
+
+struct EvaluationParams {
+  double maxTimeDifference = 0.005;  // s; association tolerance (half a frame at 100 Hz)
+  bool align = false;                // rigid (no scale) Umeyama alignment of estimate to truth
+  double cubeSide = 0.1;             // m; the virtual cube for reprojection error and jitter
+
+  void check() const;  // throws reftrack::Error naming the bad field
+};
+
+struct ErrorStats {
+  std::size_t count = 0;
+  double rmse = 0, mean = 0, median = 0, p95 = 0, max = 0;
+  // Statistics of `values` (all zero with count 0 when empty). p95 by linear interpolation.
+  static ErrorStats of(std::vector<double> values);
+};
+
+struct FrameEvaluation {
+  double timestamp = 0;           // ground-truth timestamp (s)
+  double translationErrorMm = 0;  // ATE of this frame
+  double rotationErrorDeg = 0;
+  std::optional<double> cubeErrorPx;            // mean over the visible cube vertices
+  Eigen::Vector3d trueCentre, estimatedCentre;  // camera centres in the (aligned) world, m
+};
+
+struct TrajectoryEvaluation {
+  std::size_t groundTruthFrames = 0, estimateFrames = 0, associatedFrames = 0;
+  double trackedFraction = 0;
+  ErrorStats ateTranslationMm, ateRotationDeg;
+  ErrorStats rpeTranslationMm, rpeRotationDeg;
+  std::optional<ErrorStats> cubeErrorPx;  // with a camera
+  std::optional<double> jitterMm, jitterPx;
+  bool aligned = false;
+  RigidPose alignment;  // estimate world -> ground-truth world (identity without --align)
+  std::vector<FrameEvaluation> frames;  // one per associated frame, in ground-truth order
+  std::vector<double> rpeTimestamps;    // ground-truth timestamp of each RPE pair's second frame
+  std::vector<double> rpeTranslationMmPerPair, rpeRotationDegPerPair;
+};
+
+// Throws reftrack::Error when either trajectory is empty or nothing associates.
+TrajectoryEvaluation evaluateTrajectory(const TumTrajectory& groundTruth,
+                                        const TumTrajectory& estimate,
+                                        const EvaluationParams& params,
+                                        const PinholeCamera* camera = nullptr);
+
+// The eight vertices of the cube of side `side` standing on the world z = 0 plane at the origin.
+std::vector<Eigen::Vector3d> cubeVertices(double side);
+
+}  // namespace reftrack

@@ -1,0 +1,184 @@
+#include "engine/features/CornerDetector.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/features2d.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "engine/config/ResolutionScale.hpp"
+#include "engine/core/Error.hpp"
+#include "engine/features/RmsContrast.hpp"
+
+namespace reftrack {
+
+namespace {
+
+struct Candidate {
+  cv::Point2f position;  // at full resolution
+  float response;
+};
+
+// Harris measure det(M) - k tr(M)^2 of the structure tensor summed over a block around (x, y),
+// from central differences. Computed only at FAST candidates: on a 640x480 frame this costs
+// ~0.1 ms against ~2.2 ms for cv::cornerHarris over the whole image (measured, one core).
+float harrisAt(const cv::Mat& img, int x, int y, int half, double k) {
+  // Integer sums of the doubled central differences (exact: |2 g| <= 255, a 7x7 block of squares
+  // stays below 2^22), scaled once at the end; 3x faster than summing doubles per pixel.
+  int sxx = 0, syy = 0, sxy = 0;
+  for (int v = y - half; v <= y + half; ++v) {
+    const uchar* up = img.ptr<uchar>(v - 1);
+    const uchar* row = img.ptr<uchar>(v);
+    const uchar* down = img.ptr<uchar>(v + 1);
+    for (int u = x - half; u <= x + half; ++u) {
+      const int gx = row[u + 1] - row[u - 1];
+      const int gy = down[u] - up[u];
+      sxx += gx * gx;
+      syy += gy * gy;
+      sxy += gx * gy;
+    }
+  }
+  const double xx = 0.25 * sxx, yy = 0.25 * syy, xy = 0.25 * sxy, tr = xx + yy;
+  return static_cast<float>(xx * yy - xy * xy - k * tr * tr);
+}
+
+int pyramidLevelFor(cv::Size size, bool detectAtPaperScale) {
+  if (!detectAtPaperScale) return 0;
+  // Halve while the halved image still holds at least 90% of the paper's 320x240 pixels.
+  int level = 0;
+  double area = static_cast<double>(size.width) * size.height;
+  while (area / 4.0 >= 0.9 * kPaperImageWidth * kPaperImageHeight) {
+    area /= 4.0;
+    ++level;
+  }
+  return level;
+}
+
+}  // namespace
+
+cv::Mat toGray8(const cv::Mat& image) {
+  if (image.empty()) throw Error("image is empty");
+  cv::Mat src = image;
+  if (image.depth() == CV_16U) image.convertTo(src, CV_8U, 1.0 / 256.0);
+  if (src.depth() != CV_8U)
+    throw Error("unsupported image type (expected 8-bit grey or BGR), got depth " +
+                std::to_string(image.depth()));
+  if (src.channels() == 1) return src;
+  cv::Mat gray;
+  if (src.channels() == 3)
+    cv::cvtColor(src, gray, cv::COLOR_BGR2GRAY);
+  else if (src.channels() == 4)
+    cv::cvtColor(src, gray, cv::COLOR_BGRA2GRAY);
+  else
+    throw Error("unsupported image with " + std::to_string(src.channels()) + " channels");
+  return gray;
+}
+
+CornerDetector::CornerDetector(CornerParams params) : params_(params) { params_.check(); }
+
+std::vector<Corner> CornerDetector::detect(const cv::Mat& image) const {
+  const cv::Mat gray = toGray8(image);
+  const cv::Size size = gray.size();
+  const int count = params_.countFor(size);
+  const int level = pyramidLevelFor(size, params_.detectAtPaperScale);
+  cv::Mat work = gray;
+  for (int l = 0; l < level; ++l) cv::pyrDown(work, work);
+  const float toFull = static_cast<float>(1 << level);
+  // cv::pyrDown filters around the even pixels: level pixel u sits at full-resolution 2^level u.
+
+  const int half = params_.blockSize / 2;
+  const int border = std::max(half + 2, 3);
+  std::vector<cv::KeyPoint> keypoints;
+  for (int threshold = params_.fastThreshold;; threshold /= 2) {
+    // No FAST non-maximum suppression: its strict test drops pixel-aligned corners whose
+    // neighbours tie; the Harris ranking with minimum spacing below does the suppression.
+    cv::FAST(work, keypoints, threshold, false);
+    if (static_cast<int>(keypoints.size()) >= 2 * count || threshold <= 4) break;
+  }
+
+  std::vector<Candidate> candidates;
+  candidates.reserve(keypoints.size());
+  float best = 0.0f;
+  for (const cv::KeyPoint& kp : keypoints) {
+    const int x = static_cast<int>(kp.pt.x), y = static_cast<int>(kp.pt.y);
+    if (x < border || y < border || x >= work.cols - border || y >= work.rows - border) continue;
+    const float r = harrisAt(work, x, y, half, params_.harrisK);
+    if (r <= 0.0f) continue;
+    best = std::max(best, r);
+    candidates.push_back({cv::Point2f(x * toFull, y * toFull), r});
+  }
+  std::sort(candidates.begin(), candidates.end(),
+            [](const Candidate& a, const Candidate& b) { return a.response > b.response; });
+  const float minResponse = static_cast<float>(params_.quality) * best;
+
+  // Spread: a per-cell quota on the coarse grid in the first pass, then the strongest of the
+  // rest; both passes keep the minimum spacing (checked on a fine occupancy grid).
+  const double minDist = params_.minDistanceFor(size);
+  const double cellSize = std::max(1.0, minDist);
+  const int occCols = static_cast<int>(size.width / cellSize) + 1;
+  const int occRows = static_cast<int>(size.height / cellSize) + 1;
+  std::vector<std::vector<cv::Point2f>> occupancy(static_cast<size_t>(occCols * occRows));
+  const auto farEnough = [&](cv::Point2f p) {
+    const int cx = static_cast<int>(p.x / cellSize), cy = static_cast<int>(p.y / cellSize);
+    for (int y = std::max(0, cy - 1); y <= std::min(occRows - 1, cy + 1); ++y)
+      for (int x = std::max(0, cx - 1); x <= std::min(occCols - 1, cx + 1); ++x)
+        for (const cv::Point2f& q : occupancy[static_cast<size_t>(y * occCols + x)]) {
+          const cv::Point2f d = p - q;
+          if (d.dot(d) < minDist * minDist) return false;
+        }
+    return true;
+  };
+  const int cells = params_.gridColumns * params_.gridRows;
+  const int quota = (count + cells - 1) / cells;
+  std::vector<int> perCell(static_cast<size_t>(cells), 0);
+  std::vector<char> taken(candidates.size(), 0);
+  std::vector<cv::Point2f> chosen;
+  std::vector<float> chosenResponse;
+  for (int pass = 0; pass < 2; ++pass) {
+    for (size_t i = 0; i < candidates.size() && static_cast<int>(chosen.size()) < count; ++i) {
+      const Candidate& c = candidates[i];
+      if (taken[i] || c.response < minResponse) continue;
+      const int gx = std::min(params_.gridColumns - 1,
+                              static_cast<int>(c.position.x * params_.gridColumns / size.width));
+      const int gy = std::min(params_.gridRows - 1,
+                              static_cast<int>(c.position.y * params_.gridRows / size.height));
+      int& inCell = perCell[static_cast<size_t>(gy * params_.gridColumns + gx)];
+      if (pass == 0 && inCell >= quota) continue;
+      if (!farEnough(c.position)) continue;
+      taken[i] = 1;
+      ++inCell;
+      chosen.push_back(c.position);
+      chosenResponse.push_back(c.response);
+      occupancy[static_cast<size_t>(static_cast<int>(c.position.y / cellSize) * occCols +
+                                    static_cast<int>(c.position.x / cellSize))]
+          .push_back(c.position);
+    }
+  }
+  if (chosen.empty()) return {};
+
+  const int win = params_.subPixelHalfWindow;
+  const cv::TermCriteria until(cv::TermCriteria::EPS + cv::TermCriteria::COUNT, 10, 0.01);
+  if (level > 0) {
+    // Candidates from a pyramid level are up to 2^level px off: refine them on that level first
+    // (cheap), so that the full-resolution pass starts within a pixel and keeps the base window.
+    // Measured at 640x480: 0.3 ms instead of 0.9 ms for the doubled window over 200 corners.
+    std::vector<cv::Point2f> coarse(chosen.size());
+    for (size_t i = 0; i < chosen.size(); ++i) coarse[i] = chosen[i] * (1.0f / toFull);
+    cv::cornerSubPix(work, coarse, cv::Size(win, win), cv::Size(-1, -1), until);
+    for (size_t i = 0; i < chosen.size(); ++i) chosen[i] = coarse[i] * toFull;
+    cv::cornerSubPix(gray, chosen, cv::Size(win, win), cv::Size(-1, -1), until);
+  } else {
+    cv::cornerSubPix(gray, chosen, cv::Size(win, win), cv::Size(-1, -1), until);
+  }
+  std::vector<Corner> corners;
+  corners.reserve(chosen.size());
+  for (size_t i = 0; i < chosen.size(); ++i) {
+    const cv::Point2f p = chosen[i];
+    // cornerSubPix can wander off a weak corner; drop points that left the image.
+    if (!(p.x >= 0 && p.y >= 0 && p.x <= size.width - 1 && p.y <= size.height - 1)) continue;
+    corners.push_back(
+        {p, chosenResponse[i], static_cast<float>(rmsContrast(gray, p, params_.contrastWindow))});
+  }
+  return corners;
+}
+
+}  // namespace reftrack

@@ -1,0 +1,33 @@
+#pragma once
+// CornerDetector: Harris-type corners with sub-pixel refinement, spread over the image (paper
+// Sec. 6, SPEC §1, §5). FAST proposes candidates (on the pyramid level nearest 320x240 unless
+// disabled), each is scored with the Harris measure, the strongest are kept under a per-cell
+// quota on a grid and a minimum spacing, refined with cv::cornerSubPix at full resolution and
+// given the RMS contrast of the window around them.
+#include <opencv2/core.hpp>
+#include <vector>
+
+#include "engine/config/CornerParams.hpp"
+#include "engine/features/Corner.hpp"
+
+namespace reftrack {
+
+class CornerDetector {
+ public:
+  explicit CornerDetector(CornerParams params = {});  // throws reftrack::Error on bad params
+
+  // gray: CV_8UC1 (a 3-channel BGR image is converted). At most params.countFor(size) corners,
+  // strongest first. Throws reftrack::Error on an empty image or an unsupported type.
+  std::vector<Corner> detect(const cv::Mat& image) const;
+
+  const CornerParams& params() const { return params_; }
+
+ private:
+  CornerParams params_;
+};
+
+// The 8-bit single-channel view of an image (converted from BGR/BGRA/16-bit when needed).
+// Throws reftrack::Error naming the type on anything else.
+cv::Mat toGray8(const cv::Mat& image);
+
+}  // namespace reftrack

@@ -1,0 +1,86 @@
+#include "engine/homography/AnnotationSet.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+#include "engine/core/AtomicFile.hpp"
+#include "engine/core/Error.hpp"
+#include "engine/homography/HomographyDlt.hpp"
+
+namespace reftrack {
+
+AnnotationSet::AnnotationSet(std::vector<Annotation> labels) : labels_(std::move(labels)) {
+  for (size_t i = 0; i < labels_.size(); ++i)
+    if (!std::isfinite(labels_[i].position.x) || !std::isfinite(labels_[i].position.y))
+      throw Error("label " + std::to_string(i) + " has a non-finite position");
+}
+
+AnnotationSet AnnotationSet::load(const std::filesystem::path& file) {
+  const std::string where = "labels file '" + file.string() + "'";
+  if (!std::filesystem::exists(file)) throw Error(where + " does not exist");
+  cv::FileStorage fs;
+  try {
+    // OpenCV's YAML reader needs the "%YAML:1.0" directive; accept hand-written files without it.
+    std::ifstream in(file);
+    std::stringstream text;
+    text << in.rdbuf();
+    std::string content = text.str();
+    if (content.rfind("%YAML", 0) != 0 && content.find("<?xml") == std::string::npos)
+      content = "%YAML:1.0\n---\n" + content;
+    if (!fs.open(content, cv::FileStorage::READ | cv::FileStorage::MEMORY))
+      throw Error(where + " cannot be opened as OpenCV YAML/XML");
+  } catch (const cv::Exception& e) {
+    throw Error(where + " is not valid OpenCV YAML/XML: " + e.err);
+  }
+  const cv::FileNode list = fs["labels"];
+  if (list.empty()) throw Error(where + ": missing key 'labels'");
+  if (!list.isSeq()) throw Error(where + ": 'labels' must be a list of {text, x, y}");
+  std::vector<Annotation> labels;
+  int index = 0;
+  for (const cv::FileNode& n : list) {
+    const std::string entry = where + ": labels[" + std::to_string(index++) + "]";
+    if (!n.isMap()) throw Error(entry + " must be a map {text, x, y}");
+    Annotation a;
+    const cv::FileNode t = n["text"], x = n["x"], y = n["y"];
+    if (t.empty() || !t.isString()) throw Error(entry + ": 'text' is missing or not text");
+    a.text = static_cast<std::string>(t);
+    for (const auto& [node, name] : {std::pair{x, "x"}, std::pair{y, "y"}})
+      if (node.empty() || !(node.isReal() || node.isInt()))
+        throw Error(entry + ": '" + name + "' is missing or not a number");
+    a.position = {static_cast<double>(x), static_cast<double>(y)};
+    if (!std::isfinite(a.position.x) || !std::isfinite(a.position.y))
+      throw Error(entry + ": position must be finite (got NaN/inf)");
+    labels.push_back(std::move(a));
+  }
+  return AnnotationSet(std::move(labels));
+}
+
+void AnnotationSet::save(const std::filesystem::path& file) const {
+  writeFileAtomically(file, [&](const std::filesystem::path& tmp) {
+    cv::FileStorage fs(tmp.string(), cv::FileStorage::WRITE | cv::FileStorage::FORMAT_YAML);
+    if (!fs.isOpened()) throw Error("cannot write labels file '" + file.string() + "'");
+    fs << "labels"
+       << "[";
+    for (const Annotation& a : labels_)
+      fs << "{"
+         << "text" << a.text << "x" << a.position.x << "y" << a.position.y << "}";
+    fs << "]";
+    fs.release();
+  });
+}
+
+std::vector<cv::Point2d> AnnotationSet::mapped(const cv::Matx33d& H) const {
+  std::vector<cv::Point2d> out;
+  out.reserve(labels_.size());
+  for (const Annotation& a : labels_) {
+    const cv::Point2d q = transferPoint(H, a.position);
+    const bool finite = std::isfinite(q.x) && std::isfinite(q.y);
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    out.push_back(finite ? q : cv::Point2d(nan, nan));
+  }
+  return out;
+}
+
+}  // namespace reftrack

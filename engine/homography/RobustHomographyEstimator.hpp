@@ -1,0 +1,50 @@
+#pragma once
+// RobustHomographyEstimator (paper Sec. 3.2, 7.3; SPEC §2, §5): RANSAC over minimal 4-point
+// normalised-DLT solutions with the paper's heuristics (at most 70 iterations; accept at once
+// with > 75% support after >= 15 iterations; the 4 sampled points pairwise >= 60 px apart at
+// 320x240; near-singular H rejected by a determinant test), then DLT on all inliers and a
+// Levenberg-Marquardt refinement (Ceres) of the Euclidean transfer error on the inliers.
+#include <opencv2/core.hpp>
+#include <string>
+#include <vector>
+
+#include "engine/config/RansacParams.hpp"
+
+namespace reftrack {
+
+struct HomographyEstimate {
+  bool success = false;
+  cv::Matx33d H = cv::Matx33d::eye();  // src -> dst, h33 = 1
+  std::vector<char> inliers;           // one flag per correspondence
+  int inlierCount = 0;
+  double inlierRatio = 0.0;       // inliers / correspondences
+  int iterations = 0;             // RANSAC iterations run
+  double rmsTransferError = 0.0;  // over the inliers (pixels)
+  std::string failure;            // why success is false
+};
+
+class RobustHomographyEstimator {
+ public:
+  explicit RobustHomographyEstimator(RansacParams params = {});  // throws on bad params
+
+  // src/dst: matched points (same length); imageSize: of the src image (scales the spacing).
+  // Fails (success = false, with a reason) below min_inlier_ratio or min_inliers. Throws
+  // reftrack::Error when the two lists differ in length.
+  HomographyEstimate estimate(const std::vector<cv::Point2f>& src,
+                              const std::vector<cv::Point2f>& dst, cv::Size imageSize) const;
+
+  // Finite and |det(H / h33)| within [min_determinant, 1 / min_determinant].
+  bool acceptable(const cv::Matx33d& H) const;
+
+  const RansacParams& params() const { return params_; }
+
+ private:
+  RansacParams params_;
+};
+
+// Minimises sum |H src_i - dst_i|^2 over the 8 free entries of H (Ceres, in normalised
+// coordinates); returns the refined H (h33 = 1), or H unchanged when the solve fails.
+cv::Matx33d refineHomography(const cv::Matx33d& H, const std::vector<cv::Point2f>& src,
+                             const std::vector<cv::Point2f>& dst, const std::vector<int>& indices);
+
+}  // namespace reftrack

@@ -1,0 +1,138 @@
+#include "engine/matching/NccCorrelation.hpp"
+
+#include <cmath>
+
+#include "engine/core/Error.hpp"
+
+namespace reftrack {
+
+namespace {
+
+void requireGray(const cv::Mat& gray) {
+  if (gray.empty() || gray.type() != CV_8UC1)
+    throw Error("NCC windows need a non-empty 8-bit grey image");
+}
+
+}  // namespace
+
+NccPatches::NccPatches(int halfWindow)
+    : half_(halfWindow), area_((2 * halfWindow + 1) * (2 * halfWindow + 1)) {
+  if (halfWindow < 1) throw Error("NCC half window must be at least 1");
+}
+
+void NccPatches::normaliseLast(int i) {
+  float* p = data_.data() + static_cast<size_t>(i) * area_;
+  double sum = 0;
+  for (int k = 0; k < area_; ++k) sum += p[k];
+  const float mean = static_cast<float>(sum / area_);
+  double sq = 0;
+  for (int k = 0; k < area_; ++k) {
+    p[k] -= mean;
+    sq += static_cast<double>(p[k]) * p[k];
+  }
+  // A flat window (sd below 1/100 grey level) has no defined correlation.
+  if (sq < 1e-4 * area_) {
+    valid_[static_cast<size_t>(i)] = 0;
+    return;
+  }
+  const float inv = static_cast<float>(1.0 / std::sqrt(sq));
+  for (int k = 0; k < area_; ++k) p[k] *= inv;
+}
+
+NccPatches NccPatches::square(const cv::Mat& gray, const std::vector<cv::Point2f>& centres,
+                              int halfWindow) {
+  requireGray(gray);
+  NccPatches out(halfWindow);
+  const int n = static_cast<int>(centres.size());
+  out.data_.assign(static_cast<size_t>(n) * out.area_, 0.0f);
+  out.valid_.assign(static_cast<size_t>(n), 1);
+  const int h = halfWindow;
+  for (int i = 0; i < n; ++i) {
+    const int cx = static_cast<int>(std::lround(centres[i].x));
+    const int cy = static_cast<int>(std::lround(centres[i].y));
+    if (!(cx - h >= 0 && cy - h >= 0 && cx + h < gray.cols && cy + h < gray.rows)) {
+      out.valid_[static_cast<size_t>(i)] = 0;
+      continue;
+    }
+    float* p = out.data_.data() + static_cast<size_t>(i) * out.area_;
+    for (int y = cy - h; y <= cy + h; ++y) {
+      const uchar* row = gray.ptr<uchar>(y);
+      for (int x = cx - h; x <= cx + h; ++x) *p++ = row[x];
+    }
+    out.normaliseLast(i);
+  }
+  return out;
+}
+
+NccPatches NccPatches::warped(const cv::Mat& gray, const std::vector<cv::Point2f>& centres,
+                              const std::vector<cv::Matx22f>& maps, int halfWindow) {
+  requireGray(gray);
+  if (maps.size() != centres.size())
+    throw Error("warped NCC windows: one local map per centre is required");
+  NccPatches out(halfWindow);
+  const int n = static_cast<int>(centres.size());
+  out.data_.assign(static_cast<size_t>(n) * out.area_, 0.0f);
+  out.valid_.assign(static_cast<size_t>(n), 1);
+  const int h = halfWindow;
+  const float maxX = static_cast<float>(gray.cols - 1), maxY = static_cast<float>(gray.rows - 1);
+  for (int i = 0; i < n; ++i) {
+    const cv::Matx22f& A = maps[static_cast<size_t>(i)];
+    const cv::Point2f c = centres[static_cast<size_t>(i)];
+    float* p = out.data_.data() + static_cast<size_t>(i) * out.area_;
+    bool inside = std::isfinite(c.x) && std::isfinite(c.y);
+    for (int v = -h; v <= h && inside; ++v) {
+      for (int u = -h; u <= h; ++u) {
+        const float x = c.x + A(0, 0) * u + A(0, 1) * v;
+        const float y = c.y + A(1, 0) * u + A(1, 1) * v;
+        if (!(x >= 0 && y >= 0 && x < maxX && y < maxY)) {
+          inside = false;
+          break;
+        }
+        const int x0 = static_cast<int>(x), y0 = static_cast<int>(y);
+        const float fx = x - x0, fy = y - y0;
+        const uchar* r0 = gray.ptr<uchar>(y0) + x0;
+        const uchar* r1 = gray.ptr<uchar>(y0 + 1) + x0;
+        *p++ = (1 - fy) * ((1 - fx) * r0[0] + fx * r0[1]) + fy * ((1 - fx) * r1[0] + fx * r1[1]);
+      }
+    }
+    if (!inside) {
+      out.valid_[static_cast<size_t>(i)] = 0;
+      continue;
+    }
+    out.normaliseLast(i);
+  }
+  return out;
+}
+
+float NccPatches::score(int i, const NccPatches& other, int j) const {
+  if (other.area_ != area_) throw Error("NCC windows of different sizes cannot be compared");
+  if (!valid(i) || !other.valid(j)) return -1.0f;
+  const float* a = patch(i);
+  const float* b = other.patch(j);
+  float s = 0.0f;
+  for (int k = 0; k < area_; ++k) s += a[k] * b[k];
+  return s;
+}
+
+double nccAt(const cv::Mat& gray1, cv::Point c1, const cv::Mat& gray2, cv::Point c2,
+             int halfWindow) {
+  requireGray(gray1);
+  requireGray(gray2);
+  const int h = halfWindow;
+  const cv::Rect r1(c1.x - h, c1.y - h, 2 * h + 1, 2 * h + 1);
+  const cv::Rect r2(c2.x - h, c2.y - h, 2 * h + 1, 2 * h + 1);
+  if ((r1 & cv::Rect(0, 0, gray1.cols, gray1.rows)) != r1 ||
+      (r2 & cv::Rect(0, 0, gray2.cols, gray2.rows)) != r2)
+    return -1.0;
+  cv::Scalar m1, s1, m2, s2;
+  cv::meanStdDev(gray1(r1), m1, s1);
+  cv::meanStdDev(gray2(r2), m2, s2);
+  if (s1[0] <= 0.01 || s2[0] <= 0.01) return -1.0;
+  double sum = 0;
+  for (int y = 0; y < r1.height; ++y)
+    for (int x = 0; x < r1.width; ++x)
+      sum += (gray1(r1).at<uchar>(y, x) - m1[0]) * (gray2(r2).at<uchar>(y, x) - m2[0]);
+  return sum / (static_cast<double>(r1.area()) * s1[0] * s2[0]);
+}
+
+}  // namespace reftrack

@@ -1,0 +1,275 @@
+#include "engine/reference/EpipolarGuidedMatcher.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+#include <optional>
+
+#include "engine/config/ConfigValue.hpp"
+#include "engine/core/Error.hpp"
+#include "engine/matching/NccCorrelation.hpp"
+#include "engine/reference/TwoViewTriangulator.hpp"
+
+namespace reftrack {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+// Plane hypotheses within ~78 degrees of edge-on to the viewing ray are skipped.
+constexpr double kMinPlaneCosine = 0.2;
+
+Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
+  Eigen::Matrix3d S;
+  S << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
+  return S;
+}
+
+std::vector<Eigen::Vector2d> undistorted(const PinholeCamera& camera,
+                                         const std::vector<cv::Point2f>& pixels) {
+  std::vector<Eigen::Vector2d> out;
+  out.reserve(pixels.size());
+  for (const cv::Point2f& p : camera.undistortPixels(pixels)) out.emplace_back(p.x, p.y);
+  return out;
+}
+
+void requireGray(const cv::Mat& gray, const char* name) {
+  if (gray.empty() || gray.type() != CV_8UC1)
+    throw Error(std::string("epipolar matching: ") + name +
+                " must be a non-empty 8-bit grey image");
+}
+
+// Sub-pixel offset from `centre` of the NCC peak of A's window `a` against B windows (local map
+// `map`) centred on the 3x3 pixel grid around `centre` (a quadratic fit per axis); nullopt when
+// the grid's best score is not at its centre.
+std::optional<Eigen::Vector2d> correlationPeakOffset(const NccPatches& patchesA, int a,
+                                                     const cv::Mat& grayB, cv::Point2f centre,
+                                                     const cv::Matx22f& map) {
+  std::vector<cv::Point2f> grid;
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx) grid.emplace_back(centre.x + dx, centre.y + dy);
+  const NccPatches windows = NccPatches::warped(
+      grayB, grid, std::vector<cv::Matx22f>(grid.size(), map), patchesA.halfWindow());
+  double s[9];
+  for (int i = 0; i < 9; ++i) s[i] = patchesA.score(a, windows, i);
+  for (int i = 0; i < 9; ++i)
+    if (s[i] > s[4]) return std::nullopt;
+  const auto vertex = [](double minus, double mid, double plus) {
+    const double curvature = minus - 2.0 * mid + plus;
+    return curvature < 0.0 ? 0.5 * (minus - plus) / curvature : 0.0;
+  };
+  return Eigen::Vector2d(vertex(s[3], s[4], s[5]), vertex(s[1], s[4], s[7]));
+}
+
+}  // namespace
+
+void EpipolarMatcherParams::check() const {
+  requireIntInRange("matching.half_window", halfWindow, 1, 32);
+  requireFiniteInRange("matching.min_score", minScore, -1.0, 1.0);
+  requireFiniteInRange("matching.min_score_margin", minScoreMargin, 0.0, 2.0);
+  requireFiniteInRange("matching.max_peak_offset_px", maxPeakOffsetPx, 0.0, 1000.0);
+  requireIntInRange("matching.slant_azimuths", slantAzimuths, 0, 64);
+  requireFiniteInRange("matching.slant_deg", slantDeg, 0.0, 85.0);
+  requireFiniteInRange("matching.max_epipolar_distance_px", maxEpipolarDistancePx, 1e-3, 1000.0);
+  requireFiniteInRange("matching.min_depth_m", minDepthMetres, 1e-6, 1e6);
+  requireFiniteInRange("matching.max_depth_m", maxDepthMetres, 1e-6, 1e6);
+  if (maxDepthMetres <= minDepthMetres)
+    throw Error("parameter 'matching.max_depth_m' must be larger than 'matching.min_depth_m'");
+  requireFiniteInRange("matching.min_parallax_deg", minParallaxDeg, 0.0, 90.0);
+  requireFiniteInRange("matching.max_reprojection_error_px", maxReprojectionErrorPx, 1e-3, 1000.0);
+}
+
+void EpipolarMatcherParams::write(cv::FileStorage& fs) const {
+  fs << "half_window" << halfWindow << "min_score" << minScore << "min_score_margin"
+     << minScoreMargin << "slant_azimuths" << slantAzimuths << "slant_deg" << slantDeg
+     << "max_epipolar_distance_px" << maxEpipolarDistancePx << "min_depth_m" << minDepthMetres
+     << "max_depth_m" << maxDepthMetres << "min_parallax_deg" << minParallaxDeg
+     << "max_reprojection_error_px" << maxReprojectionErrorPx;
+}
+
+void EpipolarMatcherParams::read(const cv::FileNode& node) {
+  const std::string s = "matching";
+  readConfigValue(node, s, "half_window", halfWindow);
+  readConfigValue(node, s, "min_score", minScore);
+  readConfigValue(node, s, "min_score_margin", minScoreMargin);
+  readConfigValue(node, s, "max_peak_offset_px", maxPeakOffsetPx);
+  readConfigValue(node, s, "slant_azimuths", slantAzimuths);
+  readConfigValue(node, s, "slant_deg", slantDeg);
+  readConfigValue(node, s, "max_epipolar_distance_px", maxEpipolarDistancePx);
+  readConfigValue(node, s, "min_depth_m", minDepthMetres);
+  readConfigValue(node, s, "max_depth_m", maxDepthMetres);
+  readConfigValue(node, s, "min_parallax_deg", minParallaxDeg);
+  readConfigValue(node, s, "max_reprojection_error_px", maxReprojectionErrorPx);
+  check();
+}
+
+EpipolarGuidedMatcher::EpipolarGuidedMatcher(PinholeCamera camera, const RigidPose& T_A,
+                                             const RigidPose& T_B, Params params)
+    : camera_(std::move(camera)), T_AB_(T_B * T_A.inverse()), params_(params) {
+  camera_.check();
+  params_.check();
+  if (!T_A.allFinite() || !T_B.allFinite())
+    throw Error("epipolar matching: the reference poses T_A, T_B are not finite");
+  if (T_AB_.translation().norm() < 1e-9)
+    throw Error(
+        "epipolar matching: the two reference cameras are at the same place (no baseline), so "
+        "there are no epipolar lines to match along");
+  const Eigen::Matrix3d Kinv = camera_.K().inverse();
+  F_ = Kinv.transpose() * skew(T_AB_.translation()) * T_AB_.rotation() * Kinv;
+
+  planeNormalsA_.push_back(Eigen::Vector3d::UnitZ());  // fronto-parallel
+  planeNormalsA_.push_back(T_A.rotation().col(2));     // the world's z = 0 plane
+  const double slant = params_.slantDeg * kPi / 180.0;
+  for (int k = 0; k < params_.slantAzimuths; ++k) {
+    const double azimuth = 2.0 * kPi * k / params_.slantAzimuths;
+    planeNormalsA_.emplace_back(std::sin(slant) * std::cos(azimuth),
+                                std::sin(slant) * std::sin(azimuth), std::cos(slant));
+  }
+}
+
+std::vector<cv::Matx22f> EpipolarGuidedMatcher::localMapsAtoB(const Eigen::Vector2d& pA,
+                                                              const Eigen::Vector3d& P) const {
+  const Eigen::Matrix3d& K = camera_.K();
+  const Eigen::Matrix3d Kinv = K.inverse();
+  const Eigen::Vector3d ray = P.normalized();
+  std::vector<cv::Matx22f> maps;
+  for (const Eigen::Vector3d& n : planeNormalsA_) {
+    // A plane seen almost edge-on maps the window to a sliver: no useful hypothesis.
+    if (std::abs(n.dot(ray)) < kMinPlaneCosine) continue;
+    // Homography of the plane n^T X = n^T P (camera A) from A to B: K (R + t n^T / d) K^-1.
+    const Eigen::Matrix3d H =
+        K * (T_AB_.rotation() + T_AB_.translation() * n.transpose() / n.dot(P)) * Kinv;
+    const Eigen::Vector3d q = H * pA.homogeneous();
+    const Eigen::Vector2d image = q.head<2>() / q.z();
+    // Jacobian of p -> (H p)_xy / (H p)_z at pA.
+    const Eigen::Matrix2d J = (H.topLeftCorner<2, 2>() - image * H.block<1, 2>(2, 0)) / q.z();
+    maps.emplace_back(static_cast<float>(J(0, 0)), static_cast<float>(J(0, 1)),
+                      static_cast<float>(J(1, 0)), static_cast<float>(J(1, 1)));
+  }
+  return maps;
+}
+
+double EpipolarGuidedMatcher::epipolarDistance(const Eigen::Vector2d& pA,
+                                               const Eigen::Vector2d& pB) const {
+  const Eigen::Vector3d line = F_ * pA.homogeneous();
+  return std::abs(line.dot(pB.homogeneous())) / line.head<2>().norm();
+}
+
+EpipolarMatchResult EpipolarGuidedMatcher::match(const cv::Mat& grayA,
+                                                 const std::vector<cv::Point2f>& cornersA,
+                                                 const cv::Mat& grayB,
+                                                 const std::vector<cv::Point2f>& cornersB) const {
+  requireGray(grayA, "image A");
+  requireGray(grayB, "image B");
+  EpipolarMatchResult result;
+  EpipolarMatchStats& stats = result.stats;
+  stats.cornersA = static_cast<int>(cornersA.size());
+  stats.cornersB = static_cast<int>(cornersB.size());
+  if (cornersA.empty() || cornersB.empty()) return result;
+
+  const std::vector<Eigen::Vector2d> uA = undistorted(camera_, cornersA);
+  const std::vector<Eigen::Vector2d> uB = undistorted(camera_, cornersB);
+  // Windows centred on the sub-pixel corners (bilinear), so the correlation peak in B can be
+  // compared with B's corner to a fraction of a pixel.
+  const NccPatches patchesA = NccPatches::warped(
+      grayA, cornersA, std::vector<cv::Matx22f>(cornersA.size(), cv::Matx22f::eye()),
+      params_.halfWindow);
+  const TwoViewTriangulator triangulator(camera_.K(), T_AB_);
+
+  // Best candidate (score >= minScore) of every corner on either side.
+  const int nA = stats.cornersA, nB = stats.cornersB;
+  std::vector<int> bestOfA(nA, -1), bestOfB(nB, -1);
+  std::vector<float> bestScoreA(nA, -2.0f), bestScoreB(nB, -2.0f);
+  std::vector<cv::Matx22f> bestMapA(nA);  // the winning plane hypothesis of A's best candidate
+  // The two best scores of every corner, over all its candidates on the other side.
+  std::vector<float> secondScoreA(nA, -2.0f), secondScoreB(nB, -2.0f);
+  const auto offer = [](float score, int other, int& best, float& bestScore, float& second) {
+    if (score > bestScore) {
+      second = bestScore;
+      bestScore = score;
+      best = other;
+    } else if (score > second) {
+      second = score;
+    }
+  };
+  for (int a = 0; a < nA; ++a) {
+    if (!patchesA.valid(a)) continue;
+    Eigen::Vector3d line = F_ * uA[a].homogeneous();
+    const double norm = line.head<2>().norm();
+    if (norm < 1e-12) continue;  // pA is the epipole: no line to search along
+    line /= norm;
+    for (int b = 0; b < nB; ++b) {
+      if (std::abs(line.dot(uB[b].homogeneous())) > params_.maxEpipolarDistancePx) continue;
+      const Eigen::Vector3d P = triangulator.linear(uA[a], uB[b]);
+      if (!P.allFinite() || P.z() < params_.minDepthMetres || P.z() > params_.maxDepthMetres ||
+          (T_AB_ * P).z() <= 0.0)
+        continue;
+      ++stats.candidatePairs;
+      const std::vector<cv::Matx22f> maps = localMapsAtoB(uA[a], P);
+      const NccPatches warpedB = NccPatches::warped(
+          grayB, std::vector<cv::Point2f>(maps.size(), cornersB[b]), maps, params_.halfWindow);
+      float score = -1.0f;
+      int bestHypothesis = 0;
+      for (int h = 0; h < warpedB.size(); ++h) {
+        const float sh = patchesA.score(a, warpedB, h);
+        if (sh > score) {
+          score = sh;
+          bestHypothesis = h;
+        }
+      }
+      if (score > bestScoreA[a]) bestMapA[a] = maps[static_cast<size_t>(bestHypothesis)];
+      offer(score, b, bestOfA[a], bestScoreA[a], secondScoreA[a]);
+      offer(score, a, bestOfB[b], bestScoreB[b], secondScoreB[b]);
+    }
+  }
+
+  const double minParallax = params_.minParallaxDeg * kPi / 180.0;
+  double squaredSum = 0.0;
+  for (int a = 0; a < nA; ++a) {
+    const int b = bestOfA[a];
+    if (b < 0 || bestOfB[b] != a || bestScoreA[a] < params_.minScore) continue;
+    ++stats.mutualMatches;
+    // Repeated texture along the epipolar line: a runner-up almost as good makes it a guess.
+    if (bestScoreA[a] - std::max(secondScoreA[a], secondScoreB[b]) < params_.minScoreMargin) {
+      ++stats.droppedAmbiguous;
+      continue;
+    }
+    // Corners of a strongly foreshortened or half-occluded structure are found at slightly
+    // different places of it in the two views: the correlation peak next to B's corner must be
+    // close to it, and the point is triangulated from A's corner and that peak (simulator,
+    // 640x480: depth RMS error 2.5 mm against 3.4 mm from the two corners, same 385 points).
+    const std::optional<Eigen::Vector2d> peak =
+        correlationPeakOffset(patchesA, a, grayB, cornersB[b], bestMapA[a]);
+    if (!peak || peak->norm() > params_.maxPeakOffsetPx) {
+      ++stats.droppedPeakOffset;
+      continue;
+    }
+    const Eigen::Vector2d pB = uB[b] + *peak;
+    const Eigen::Vector3d P = triangulator.refine(uA[a], pB, triangulator.linear(uA[a], pB));
+    if (!P.allFinite() || P.z() <= 0.0 || (T_AB_ * P).z() <= 0.0) {
+      ++stats.droppedBehindCamera;
+      continue;
+    }
+    if (P.z() < params_.minDepthMetres || P.z() > params_.maxDepthMetres) {
+      ++stats.droppedOutsideDepthRange;
+      continue;
+    }
+    if (triangulator.parallaxAngle(P) < minParallax) {
+      ++stats.droppedLowParallax;
+      continue;
+    }
+    const double eA = triangulator.reprojectionErrorA(P, uA[a]);
+    const double eB = triangulator.reprojectionErrorB(P, pB);
+    if (std::max(eA, eB) > params_.maxReprojectionErrorPx) {
+      ++stats.droppedReprojection;
+      continue;
+    }
+    squaredSum += eA * eA + eB * eB;
+    result.matches.push_back({a, b, P});
+    result.scores.push_back(bestScoreA[a]);
+  }
+  stats.kept = static_cast<int>(result.matches.size());
+  if (stats.kept > 0) stats.reprojectionRmsPx = std::sqrt(squaredSum / (2.0 * stats.kept));
+  return result;
+}
+
+}  // namespace reftrack

@@ -1,0 +1,99 @@
+#pragma once
+// EpipolarGuidedMatcher: matches the corners of the two reference images V_A <-> V_B when their
+// relative pose T_AB is known (paper Sec. 3.3, SPEC §1.2-1.3). A corner of B is a candidate for a
+// corner of A when it lies within maxEpipolarDistancePx of A's epipolar line (F from K and T_AB,
+// on undistorted coordinates) and its linear triangulation (Eq. 9) lies inside the depth range.
+// The references are a wide baseline apart, so B's window is warped (as in Eq. 19) by the
+// homography of a local plane through the triangulated point — fronto-parallel, the world's z = 0
+// plane (the marker's) and a ring of slanted planes — and the best of these NCCs scores the pair.
+// The best score above minScore wins and only mutual best pairs survive (symmetric check); a
+// pair is dropped as ambiguous when a runner-up of either corner scores within minScoreMargin,
+// and when the correlation peak around B's corner lies more than maxPeakOffsetPx from it;
+// each survivor is triangulated (Eq. 9, refined by Eq. 10) from A's corner and that sub-pixel
+// peak, and dropped when behind a camera,
+// outside the depth range, with too little parallax or with a large reprojection error.
+#include <opencv2/core.hpp>
+#include <vector>
+
+#include "engine/geometry/PinholeCamera.hpp"
+#include "engine/geometry/RigidPose.hpp"
+#include "engine/reference/ReferenceMap.hpp"
+
+namespace reftrack {
+
+struct EpipolarMatcherParams {
+  int halfWindow = 7;     // NCC windows are (2n+1)^2 pixels of the full image
+  double minScore = 0.8;  // keep the best candidate only above this NCC
+  // ... and only when it beats every other candidate of either corner by this much.
+  double minScoreMargin = 0.05;
+  // The NCC peak around B's corner must lie within this distance of it (pixels).
+  double maxPeakOffsetPx = 0.5;
+  // Plane hypotheses of the warped window: slantAzimuths planes tilted by slantDeg from
+  // fronto-parallel (0 azimuths: fronto-parallel and the world plane only).
+  int slantAzimuths = 6;
+  double slantDeg = 50.0;
+  double maxEpipolarDistancePx = 2.0;  // candidate's distance to the epipolar line (pixels)
+  double minDepthMetres = 0.05;        // depth range (camera A's z) of admissible points
+  double maxDepthMetres = 50.0;
+  double minParallaxDeg = 1.0;          // angle between the two viewing rays
+  double maxReprojectionErrorPx = 1.0;  // after Eq. 10, in either image
+
+  void check() const;                     // throws reftrack::Error naming the bad field
+  void write(cv::FileStorage& fs) const;  // key/value pairs into the currently open map
+  void read(const cv::FileNode& node);    // missing keys keep their value; then check()
+};
+
+// What happened to the corners, for the `prepare` summary.
+struct EpipolarMatchStats {
+  int cornersA = 0, cornersB = 0;
+  int candidatePairs = 0;     // (A, B) pairs passing the epipolar and depth gates
+  int mutualMatches = 0;      // mutual best pairs above minScore: the candidate matches
+  int droppedAmbiguous = 0;   // a runner-up scores within minScoreMargin of the best
+  int droppedPeakOffset = 0;  // correlation peak more than maxPeakOffsetPx from B's corner
+  int droppedBehindCamera = 0;
+  int droppedOutsideDepthRange = 0;
+  int droppedLowParallax = 0;
+  int droppedReprojection = 0;
+  int kept = 0;
+  // RMS over both images of the kept matches (against A's corner and B's correlation peak).
+  double reprojectionRmsPx = 0.0;
+};
+
+struct EpipolarMatchResult {
+  std::vector<ReferenceMatch> matches;  // kept matches, 3D point in camera A's frame
+  std::vector<float> scores;            // NCC of each kept match
+  EpipolarMatchStats stats;
+};
+
+class EpipolarGuidedMatcher {
+ public:
+  using Params = EpipolarMatcherParams;
+
+  // T_A, T_B: world->camera poses of the references (T_AB = T_B * T_A^-1 maps camera-A points
+  // to camera B). Throws reftrack::Error on bad params or a baseline too short to define
+  // epipolar lines.
+  EpipolarGuidedMatcher(PinholeCamera camera, const RigidPose& T_A, const RigidPose& T_B,
+                        Params params = {});
+
+  // grayA/grayB: CV_8UC1 reference images; corners as detected (with lens distortion).
+  EpipolarMatchResult match(const cv::Mat& grayA, const std::vector<cv::Point2f>& cornersA,
+                            const cv::Mat& grayB, const std::vector<cv::Point2f>& cornersB) const;
+
+  // Fundamental matrix on undistorted pixels: ~p_B^T F ~p_A = 0 (SPEC §2).
+  const Eigen::Matrix3d& fundamental() const { return F_; }
+  // Perpendicular distance (pixels) of undistorted pB to the epipolar line of undistorted pA.
+  double epipolarDistance(const Eigen::Vector2d& pA, const Eigen::Vector2d& pB) const;
+
+ private:
+  // Local linear maps (window offsets in A -> offsets in B) at undistorted pA for each plane
+  // hypothesis through the point P (camera A's frame).
+  std::vector<cv::Matx22f> localMapsAtoB(const Eigen::Vector2d& pA, const Eigen::Vector3d& P) const;
+
+  PinholeCamera camera_;
+  RigidPose T_AB_;
+  Params params_;
+  Eigen::Matrix3d F_;
+  std::vector<Eigen::Vector3d> planeNormalsA_;  // unit normals of the plane hypotheses, frame A
+};
+
+}  // namespace reftrack

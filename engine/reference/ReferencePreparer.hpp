@@ -1,0 +1,89 @@
+#pragma once
+// ReferencePreparer: the offline preparation of paper Sec. 2/3.3 (SPEC §1) — from two reference
+// images and their world->camera poses (given, or from an ArUco marker seen in both) to a
+// ReferenceMap: corners of both images (many more than a tracked frame gets, so the tracker has
+// plenty to match), epipolar-guided A<->B matches and their triangulated 3D points.
+// Every bad input (unreadable or mis-sized image, missing marker, no baseline, too few matches)
+// throws reftrack::Error naming the image or the parameter at fault.
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "engine/config/CornerParams.hpp"
+#include "engine/geometry/PinholeCamera.hpp"
+#include "engine/geometry/RigidPose.hpp"
+#include "engine/reference/EpipolarGuidedMatcher.hpp"
+#include "engine/reference/MarkerPoseEstimator.hpp"
+#include "engine/reference/MarkerSpec.hpp"
+#include "engine/reference/ReferenceMap.hpp"
+
+namespace reftrack {
+
+struct ReferencePreparerParams {
+  // Six times the per-frame corner count (55 at 320x240) at half the spacing, found at full
+  // resolution down to a tenth of the usual Harris quality: the tracker's wide-baseline matching
+  // needs many reference corners with 3D points (640x480 simulator, measured: 1135 corners and
+  // 570 kept matches; 1036 and 425 when found on the 320x240 pyramid level).
+  CornerParams corners = [] {
+    CornerParams c;
+    c.countAt320x240 = 330;
+    c.minDistancePx = 4.0;
+    c.quality = 0.001;
+    c.detectAtPaperScale = false;
+    return c;
+  }();
+  EpipolarMatcherParams matching;
+  MarkerPoseParams marker;
+  double minBaselineMetres = 0.01;  // reference cameras closer than this cannot triangulate
+  int minMatches = 30;              // fewer kept matches than this is a failed preparation
+
+  void check() const;                     // throws reftrack::Error naming the bad field
+  void write(cv::FileStorage& fs) const;  // sections corners, matching, marker, preparation
+  void read(const cv::FileNode& root);    // missing keys keep their value; then check()
+  std::string toYaml() const;             // the whole set as YAML text (ReferenceMap's record)
+  // Throws reftrack::Error naming the file and the key at fault.
+  static ReferencePreparerParams load(const std::filesystem::path& file);
+};
+
+// One reference image with the name its errors use (usually the file path).
+struct ReferenceImage {
+  cv::Mat image;  // BGR or grey, 8-bit
+  std::string name;
+};
+
+struct PreparationReport {
+  std::optional<double> markerRmsA, markerRmsB;  // marker corner reprojection RMS (pixels)
+  double baselineMetres = 0.0;                   // distance between the two camera centres
+  EpipolarMatchStats matching;
+  int occupiedGridCells = 0;  // cells of a 4x3 grid over image A holding a kept match
+};
+
+struct Preparation {
+  ReferenceMap map;
+  PreparationReport report;
+};
+
+class ReferencePreparer {
+ public:
+  using Params = ReferencePreparerParams;
+
+  ReferencePreparer(PinholeCamera camera, Params params = {});  // throws on bad input
+
+  // Poses T_A, T_B from `marker`, detected in both images.
+  Preparation prepare(const ReferenceImage& a, const ReferenceImage& b,
+                      const MarkerSpec& marker) const;
+  // Known world->camera poses; poseSource is recorded in the map (e.g. "poses references.txt").
+  Preparation prepare(const ReferenceImage& a, const ReferenceImage& b, const RigidPose& T_A,
+                      const RigidPose& T_B, const std::string& poseSource) const;
+
+ private:
+  Preparation triangulate(const ReferenceImage& a, const ReferenceImage& b, const RigidPose& T_A,
+                          const RigidPose& T_B, const std::string& poseSource,
+                          PreparationReport report) const;
+  void checkImages(const ReferenceImage& a, const ReferenceImage& b) const;
+
+  PinholeCamera camera_;
+  Params params_;
+};
+
+}  // namespace reftrack

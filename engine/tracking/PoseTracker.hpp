@@ -1,0 +1,76 @@
+#pragma once
+// PoseTracker (paper Sec. 3-6): the full 6-DOF tracker. Each frame: corners; while tracking,
+// frame-to-frame narrow-baseline matching and homography, wide-baseline matching to V_A and V_B
+// (WideBaselineMatcher), three-view pairs through the map's A<->B matches, outlier rejection by
+// PnP-RANSAC on the 3D-2D pairs and an epipolar gate, then the pose x_Ak from the standard or the
+// regularised estimator (TemporalRegularizer). Not tracking: initialisation by narrow-baseline
+// matching to V_A (or V_B) and V_B through the stored matches. Never reports a pose without
+// enough inlier support: the frame is `Lost` instead, with the reason.
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/config/TrackerParams.hpp"
+#include "engine/estimation/CornerVarianceModel.hpp"
+#include "engine/estimation/MotionModel.hpp"
+#include "engine/geometry/RigidPose.hpp"
+#include "engine/reference/ReferenceMap.hpp"
+
+namespace reftrack {
+
+enum class TrackingState { Initialising, Tracking, Lost };
+const char* toString(TrackingState state);
+
+// Limits of the 6-DOF tracker's sanity checks (defaults suit 320x240 to 1280x720).
+struct PoseTrackerLimits {
+  int minCorners = 20;                // fewer corners in a frame: textureless/black -> lost
+  int minInliers = 15;                // fewer supporting matches -> lost
+  double gatePx = 2.5;                // residual gate (pixels at 320x240, scaled with the image)
+  double maxRmsPx = 1.5;              // three-view RMS at the solution (at 320x240, scaled) -> lost
+  double maxSigmaTranslation = 0.05;  // metres: a larger pose SD means the estimate blew up
+  int ransacIterations = 100;         // PnP-RANSAC on the 3D-2D pairs
+  double minEpipolarBaseline = 0.01;  // metres: closer to a reference, its epipolar terms drop
+  void check() const;
+};
+
+struct StageTiming {
+  std::string stage;
+  double ms = 0.0;
+};
+
+struct PoseTrackingResult {
+  TrackingState state = TrackingState::Initialising;
+  std::string message;                     // how it initialised or why it is lost
+  std::optional<RigidPose> worldToCamera;  // T_k = T_Ak T_A, only with support
+  std::optional<RigidPose> T_Ak;
+  Matrix6d covariance = Matrix6d::Zero();  // Omega_k of x_Ak
+  int corners = 0, matchesA = 0, matchesB = 0, threeView = 0, inliers = 0;
+  std::vector<StageTiming> timings;
+  double totalMs = 0.0;
+  // Debug primitives in frame pixels: corners and inlier matches (frame pixel, reference pixel).
+  std::vector<cv::Point2f> frameCorners;
+  std::vector<std::pair<cv::Point2f, cv::Point2f>> inliersA, inliersB;
+};
+
+class PoseTracker {
+ public:
+  PoseTracker(ReferenceMap map, const TrackerParams& params, PoseTrackerLimits limits = {});
+  ~PoseTracker();
+
+  // One frame (BGR or grey, the map's image size; throws reftrack::Error on another size).
+  PoseTrackingResult process(const cv::Mat& frame);
+
+  void setParams(const TrackerParams& params);  // takes effect on the next frame
+  void setMotionModel(const ArMotionModel& model);
+  void setCornerVarianceModel(const CornerVarianceModel& model);
+  void reset();  // back to initialising
+  const ReferenceMap& map() const;
+  TrackingState state() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace reftrack

@@ -1,0 +1,37 @@
+#pragma once
+// WarpedCorrelation (paper Eq. 19, SPEC §4): NCC between the (2n+1)^2 window of the current frame
+// around a corner p_k and the reference image sampled, bilinearly, at O W m for every window pixel
+// m — W maps the current frame to the reference (W = L H) and O shifts the warped window so it is
+// centred on a candidate corner p_A. Unlike plain NCC, the score survives the rotation, scale and
+// shear between views that are far apart.
+#include <opencv2/core.hpp>
+#include <vector>
+
+namespace reftrack {
+
+class WarpedCorrelation {
+ public:
+  // frame, reference: CV_32FC1 grey images (0..255).
+  WarpedCorrelation(const cv::Mat& frame, const cv::Mat& reference, int halfWindow);
+
+  // The frame window around pK, zero-mean and unit-norm; empty when the window leaves the frame
+  // or is textureless (then no score is defined).
+  struct FramePatch {
+    std::vector<float> values;
+    cv::Point2d centre;
+    bool valid() const { return !values.empty(); }
+  };
+  FramePatch framePatch(cv::Point2f pK) const;
+
+  // Eq. 19 score in [-1, 1] of `patch` against the reference sampled at
+  // W(m) - W(pK) + pA; returns -1 when the warped window leaves the reference or is flat.
+  double score(const FramePatch& patch, const cv::Matx33d& W, cv::Point2d pA) const;
+
+  int halfWindow() const { return n_; }
+
+ private:
+  cv::Mat frame_, reference_;
+  int n_;
+};
+
+}  // namespace reftrack

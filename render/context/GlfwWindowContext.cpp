@@ -1,0 +1,96 @@
+// GLFW window context. GLFW is initialised with the first window and terminated with the last.
+#include "render/context/GlfwWindowContext.hpp"
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+
+#include <cstdlib>
+#include <string>
+
+#include "engine/core/Error.hpp"
+#include "render/gl/GlLoader.hpp"
+
+namespace reftrack::render {
+
+namespace {
+
+int openWindows = 0;
+std::string lastGlfwError;
+
+void recordGlfwError(int, const char* description) {
+  lastGlfwError = description ? description : "unknown GLFW error";
+}
+
+bool environmentSet(const char* name) {
+  const char* value = std::getenv(name);
+  return value && *value;
+}
+
+GlProcLoader glfwLoader() { return reinterpret_cast<GlProcLoader>(&glfwGetProcAddress); }
+
+}  // namespace
+
+void WindowOptions::check() const {
+  if (size.width <= 0 || size.height <= 0)
+    throw Error("window size must be positive, got " + std::to_string(size.width) + "x" +
+                std::to_string(size.height));
+}
+
+GlfwWindowContext::GlfwWindowContext(const WindowOptions& options) {
+  options.check();
+  if (!environmentSet("DISPLAY") && !environmentSet("WAYLAND_DISPLAY"))
+    throw Error(
+        "no display (DISPLAY unset): cannot open a window; run under a desktop session or "
+        "xvfb-run, or use the headless commands");
+  glfwSetErrorCallback(recordGlfwError);
+  if (openWindows == 0 && !glfwInit())
+    throw Error("GLFW could not initialise the window system: " + lastGlfwError);
+  ++openWindows;
+  glfwDefaultWindowHints();
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+  glfwWindowHint(GLFW_VISIBLE, options.visible ? GLFW_TRUE : GLFW_FALSE);
+  window_ = glfwCreateWindow(options.size.width, options.size.height, options.title.c_str(),
+                             nullptr, nullptr);
+  if (!window_) {
+    if (--openWindows == 0) glfwTerminate();
+    throw Error("GLFW could not open an OpenGL 3.3 core window: " + lastGlfwError);
+  }
+  try {
+    makeCurrent();
+    glfwSwapInterval(options.vsync ? 1 : 0);
+    description_ = currentGlDescription();
+  } catch (...) {
+    glfwDestroyWindow(window_);
+    if (--openWindows == 0) glfwTerminate();
+    throw;
+  }
+}
+
+GlfwWindowContext::~GlfwWindowContext() {
+  if (glfwGetCurrentContext() == window_) glfwMakeContextCurrent(nullptr);
+  glfwDestroyWindow(window_);
+  if (--openWindows == 0) glfwTerminate();
+}
+
+void GlfwWindowContext::makeCurrent() {
+  glfwMakeContextCurrent(window_);
+  loadGlFunctionsFor(glfwLoader());
+}
+
+cv::Size GlfwWindowContext::framebufferSize() const {
+  int width = 0, height = 0;
+  glfwGetFramebufferSize(window_, &width, &height);
+  return {width, height};
+}
+
+void GlfwWindowContext::swapBuffers() { glfwSwapBuffers(window_); }
+bool GlfwWindowContext::shouldClose() const { return glfwWindowShouldClose(window_) != 0; }
+void GlfwWindowContext::setShouldClose(bool close) {
+  glfwSetWindowShouldClose(window_, close ? GLFW_TRUE : GLFW_FALSE);
+}
+void GlfwWindowContext::pollEvents() { glfwPollEvents(); }
+
+}  // namespace reftrack::render

@@ -1,0 +1,30 @@
+#pragma once
+// OsMesaContext: an off-screen OpenGL 3.3 core context from OSMesa (Mesa's software renderer).
+// Its default framebuffer is a tiny client buffer; render into framebuffer objects
+// (RenderTarget) instead.
+#include <memory>
+#include <string>
+
+#include "render/context/GlContext.hpp"
+
+namespace reftrack::render {
+
+class OsMesaContext final : public GlContext {
+ public:
+  // Creates the context, makes it current and loads the GL functions. Throws reftrack::Error.
+  OsMesaContext();
+  ~OsMesaContext() override;
+  OsMesaContext(const OsMesaContext&) = delete;
+  OsMesaContext& operator=(const OsMesaContext&) = delete;
+
+  void makeCurrent() override;
+  std::string backendName() const override { return "osmesa"; }
+  std::string description() const override { return description_; }
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  std::string description_;
+};
+
+}  // namespace reftrack::render

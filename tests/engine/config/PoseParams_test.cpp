@@ -1,0 +1,48 @@
+#include "engine/config/PoseParams.hpp"
+
+#include <gtest/gtest.h>
+
+#include <limits>
+
+#include "engine/config/ParamsTestSupport.hpp"
+
+using namespace reftrack;
+using namespace reftrack::test;
+
+TEST(PoseParams, DefaultsAndRoundTrip) {
+  PoseParams in;
+  EXPECT_EQ(in.estimator, PoseEstimatorKind::Regularised);
+  EXPECT_DOUBLE_EQ(in.alpha, 1.0);
+  EXPECT_EQ(in.arOrder, 1);
+  in.estimator = PoseEstimatorKind::Standard;
+  in.alpha = 2.5;
+  in.arOrder = 2;
+  in.translationSigma = 0.004;
+  in.rotationSigma = 0.003;
+  in.motionModelFile = "model.yml";
+  PoseParams out;
+  roundTrip(in, out);
+  EXPECT_EQ(out.estimator, PoseEstimatorKind::Standard);
+  EXPECT_DOUBLE_EQ(out.alpha, 2.5);
+  EXPECT_EQ(out.arOrder, 2);
+  EXPECT_DOUBLE_EQ(out.translationSigma, 0.004);
+  EXPECT_DOUBLE_EQ(out.rotationSigma, 0.003);
+  EXPECT_EQ(out.motionModelFile, "model.yml");
+}
+
+TEST(PoseParams, EveryBadFieldIsNamed) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const std::vector<std::pair<std::string, std::function<void(PoseParams&)>>> cases = {
+      {"pose.alpha", [&](PoseParams& p) { p.alpha = nan; }},
+      {"pose.ar_order", [](PoseParams& p) { p.arOrder = 0; }},
+      {"pose.translation_sigma", [](PoseParams& p) { p.translationSigma = 0; }},
+      {"pose.rotation_sigma", [&](PoseParams& p) { p.rotationSigma = nan; }},
+  };
+  for (const auto& [field, mutate] : cases) {
+    PoseParams p;
+    mutate(p);
+    EXPECT_NE(errorMessage([&] { p.check(); }).find(field), std::string::npos) << field;
+  }
+  EXPECT_NE(errorMessage([] { parsePoseEstimatorKind("kalman"); }).find("pose.estimator"),
+            std::string::npos);
+}

@@ -1,0 +1,79 @@
+#include "engine/config/TrackerParams.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "TestPaths.hpp"
+#include "engine/config/ParamsTestSupport.hpp"
+
+using namespace reftrack;
+using namespace reftrack::test;
+
+namespace {
+std::filesystem::path writeText(const std::filesystem::path& file, const std::string& text) {
+  std::ofstream(file) << text;
+  return file;
+}
+}  // namespace
+
+TEST(TrackerParams, SaveLoadRoundTripsEverySection) {
+  const auto dir = freshTempDir("TrackerParams_roundtrip");
+  TrackerParams in;
+  in.mode = TrackingMode::Homography;
+  in.corners.countAt320x240 = 60;
+  in.correlation.minScore = 0.75;
+  in.ransac.maxIterations = 90;
+  in.homography.guidedSearchHalfSizePx = 5;
+  in.wideBaseline.dx = 12;
+  in.pose.estimator = PoseEstimatorKind::Standard;
+  in.save(dir / "params.yml");
+  const TrackerParams out = TrackerParams::load(dir / "params.yml");
+  EXPECT_EQ(out.mode, TrackingMode::Homography);
+  EXPECT_EQ(out.corners.countAt320x240, 60);
+  EXPECT_DOUBLE_EQ(out.correlation.minScore, 0.75);
+  EXPECT_EQ(out.ransac.maxIterations, 90);
+  EXPECT_DOUBLE_EQ(out.homography.guidedSearchHalfSizePx, 5);
+  EXPECT_EQ(out.wideBaseline.dx, 12);
+  EXPECT_EQ(out.pose.estimator, PoseEstimatorKind::Standard);
+  // Only the final file remains (atomic write leaves no temporary behind).
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir),
+                          std::filesystem::directory_iterator()),
+            1);
+}
+
+TEST(TrackerParams, MissingKeysKeepDefaults) {
+  const auto dir = freshTempDir("TrackerParams_defaults");
+  const TrackerParams p =
+      TrackerParams::load(writeText(dir / "p.yml", "%YAML:1.0\nransac:\n  max_iterations: 20\n"));
+  EXPECT_EQ(p.ransac.maxIterations, 20);
+  EXPECT_EQ(p.ransac.earlyAcceptMinIterations, 15);
+  EXPECT_EQ(p.mode, TrackingMode::SixDof);
+  EXPECT_EQ(p.corners.countAt320x240, 55);
+}
+
+TEST(TrackerParams, ErrorsNameFileAndKey) {
+  const auto dir = freshTempDir("TrackerParams_errors");
+  const auto bad = [&](const std::string& name, const std::string& body) {
+    const auto file = writeText(dir / name, "%YAML:1.0\n" + body);
+    return errorMessage([&] { TrackerParams::load(file); });
+  };
+  EXPECT_NE(bad("mode.yml", "mode: stereo\n").find("'mode'"), std::string::npos);
+  EXPECT_NE(bad("nan.yml", "correlation:\n  min_score: .nan\n").find("correlation.min_score"),
+            std::string::npos);
+  EXPECT_NE(bad("type.yml", "corners:\n  count: lots\n").find("corners.count"), std::string::npos);
+  EXPECT_NE(bad("range.yml", "ransac:\n  min_inlier_ratio: 3\n").find("ransac.min_inlier_ratio"),
+            std::string::npos);
+  EXPECT_NE(bad("section.yml", "pose: 3\n").find("'pose'"), std::string::npos);
+  EXPECT_NE(bad("range.yml", "ransac:\n  min_inlier_ratio: 3\n").find("range.yml"),
+            std::string::npos);
+  EXPECT_NE(errorMessage([&] { TrackerParams::load(dir / "absent.yml"); }).find("does not exist"),
+            std::string::npos);
+  EXPECT_NE(bad("garbage.yml", "[unclosed: {\n").find("garbage.yml"), std::string::npos);
+}
+
+TEST(TrackerParams, ModeNames) {
+  EXPECT_EQ(parseTrackingMode("6dof"), TrackingMode::SixDof);
+  EXPECT_EQ(parseTrackingMode("homography"), TrackingMode::Homography);
+  EXPECT_THROW(parseTrackingMode("affine"), Error);
+}

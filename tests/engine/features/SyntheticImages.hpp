@@ -1,0 +1,64 @@
+#pragma once
+// Synthetic test images with exact ground truth: a textured scene of random rectangles and
+// ellipses on a smooth background, ideal squares with known sub-pixel corners, and warps of an
+// image by a known homography.
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+#include <vector>
+
+namespace reftrack::test {
+
+// Random rectangles and ellipses (grey levels 20..235) over a smooth gradient, slightly blurred.
+inline cv::Mat texturedImage(cv::Size size, uint64_t seed, int shapes = 0) {
+  cv::RNG rng(seed);
+  cv::Mat img(size, CV_8UC1);
+  for (int y = 0; y < size.height; ++y)
+    for (int x = 0; x < size.width; ++x)
+      img.at<uchar>(y, x) = static_cast<uchar>(90 + 40.0 * x / size.width + 30.0 * y / size.height);
+  if (shapes == 0) shapes = size.area() / 600;
+  for (int i = 0; i < shapes; ++i) {
+    const cv::Point c(rng.uniform(0, size.width), rng.uniform(0, size.height));
+    const int w = rng.uniform(4, std::max(6, size.width / 12));
+    const int h = rng.uniform(4, std::max(6, size.height / 12));
+    const cv::Scalar grey(rng.uniform(20, 236));
+    if (rng.uniform(0, 3) == 0)
+      cv::ellipse(img, c, cv::Size(w / 2, h / 2), rng.uniform(0, 180), 0, 360, grey, cv::FILLED,
+                  cv::LINE_AA);
+    else
+      cv::rectangle(img, cv::Rect(c.x, c.y, w, h), grey, cv::FILLED);
+  }
+  cv::GaussianBlur(img, img, cv::Size(0, 0), 0.7);
+  return img;
+}
+
+// dst(x) = src(H^-1 x): the image as seen through the homography H (src -> dst).
+inline cv::Mat warpedBy(const cv::Mat& src, const cv::Matx33d& H, cv::Size size = {}) {
+  cv::Mat dst;
+  cv::warpPerspective(src, dst, H, size.area() ? size : src.size(), cv::INTER_LINEAR,
+                      cv::BORDER_REFLECT);
+  return dst;
+}
+
+inline cv::Mat withNoise(const cv::Mat& src, double sigma, uint64_t seed) {
+  cv::Mat noise(src.size(), CV_32F), f;
+  cv::RNG(seed).fill(noise, cv::RNG::NORMAL, 0, sigma);
+  src.convertTo(f, CV_32F);
+  f += noise;
+  cv::Mat out;
+  f.convertTo(out, CV_8U);
+  return out;
+}
+
+// Max distance over the four image corners between H and the truth (pixels).
+inline double cornerError(const cv::Matx33d& H, const cv::Matx33d& truth, cv::Size size) {
+  double worst = 0;
+  for (const cv::Point2d p :
+       {cv::Point2d(0, 0), cv::Point2d(size.width - 1, 0), cv::Point2d(0, size.height - 1),
+        cv::Point2d(size.width - 1, size.height - 1)}) {
+    const cv::Vec3d a = H * cv::Vec3d(p.x, p.y, 1), b = truth * cv::Vec3d(p.x, p.y, 1);
+    worst = std::max(worst, std::hypot(a[0] / a[2] - b[0] / b[2], a[1] / a[2] - b[1] / b[2]));
+  }
+  return worst;
+}
+
+}  // namespace reftrack::test

@@ -1,0 +1,91 @@
+#include "engine/homography/RobustHomographyEstimator.hpp"
+
+#include <gtest/gtest.h>
+
+#include "engine/core/Error.hpp"
+#include "engine/features/SyntheticImages.hpp"
+#include "engine/homography/HomographyDlt.hpp"
+
+using namespace reftrack;
+
+namespace {
+
+const cv::Matx33d kTruth(1.02, 0.04, 8.0, -0.03, 0.98, -5.0, 1e-4, -5e-5, 1.0);
+
+// n matches over a 320x240 image: a fraction `outliers` random, the rest exact + Gaussian noise.
+void makeMatches(int n, double outliers, double noise, std::vector<cv::Point2f>& src,
+                 std::vector<cv::Point2f>& dst, std::vector<char>& isInlier) {
+  cv::RNG rng(42);
+  for (int i = 0; i < n; ++i) {
+    const cv::Point2f p(rng.uniform(0.f, 320.f), rng.uniform(0.f, 240.f));
+    src.push_back(p);
+    const bool inlier = i >= static_cast<int>(outliers * n);
+    isInlier.push_back(inlier);
+    if (inlier) {
+      const cv::Point2d q = transferPoint(kTruth, p);
+      dst.emplace_back(static_cast<float>(q.x + rng.gaussian(noise)),
+                       static_cast<float>(q.y + rng.gaussian(noise)));
+    } else {
+      dst.emplace_back(rng.uniform(0.f, 320.f), rng.uniform(0.f, 240.f));
+    }
+  }
+}
+
+}  // namespace
+
+TEST(RobustHomographyEstimator, RecoversHWithOutliersAndNoise) {
+  std::vector<cv::Point2f> src, dst;
+  std::vector<char> truthInlier;
+  makeMatches(60, 0.3, 0.3, src, dst, truthInlier);
+  const auto est = RobustHomographyEstimator().estimate(src, dst, {320, 240});
+  ASSERT_TRUE(est.success) << est.failure;
+  // 42 inliers with 0.3 px noise: the 8-parameter fit has ~0.3 * sqrt(8 / 42) ~ 0.13 px SD at
+  // the centre and about twice that extrapolated to the image corners; 0.6 px is ~2.5 SD.
+  EXPECT_LT(test::cornerError(est.H, kTruth, {320, 240}), 0.6);
+  int wrong = 0;
+  for (size_t i = 0; i < src.size(); ++i) wrong += est.inliers[i] != truthInlier[i];
+  EXPECT_LE(wrong, 1);  // a random outlier may land within 2 px by chance
+  EXPECT_LE(est.iterations, 70);
+  EXPECT_NEAR(est.rmsTransferError, 0.3 * std::sqrt(2.0), 0.15);
+}
+
+TEST(RobustHomographyEstimator, EarlyAcceptAfterFifteenIterations) {
+  std::vector<cv::Point2f> src, dst;
+  std::vector<char> truthInlier;
+  makeMatches(60, 0.1, 0.2, src, dst, truthInlier);  // 90% support > 75%
+  const auto est = RobustHomographyEstimator().estimate(src, dst, {320, 240});
+  ASSERT_TRUE(est.success);
+  EXPECT_EQ(est.iterations, 15);
+}
+
+TEST(RobustHomographyEstimator, RefinementDoesNotWorsenTheFit) {
+  std::vector<cv::Point2f> src, dst;
+  std::vector<char> truthInlier;
+  makeMatches(80, 0.2, 0.5, src, dst, truthInlier);
+  RansacParams plain;
+  plain.refine = false;
+  const auto a = RobustHomographyEstimator(plain).estimate(src, dst, {320, 240});
+  const auto b = RobustHomographyEstimator().estimate(src, dst, {320, 240});
+  ASSERT_TRUE(a.success && b.success);
+  // LM minimises exactly the transfer error that DLT only approximates.
+  EXPECT_LE(b.rmsTransferError, a.rmsTransferError + 1e-9);
+}
+
+TEST(RobustHomographyEstimator, FailsBelowMinimumInlierRatio) {
+  std::vector<cv::Point2f> src, dst;
+  std::vector<char> truthInlier;
+  makeMatches(100, 0.8, 0.2, src, dst, truthInlier);  // 20% inliers < 35%
+  const auto est = RobustHomographyEstimator().estimate(src, dst, {320, 240});
+  EXPECT_FALSE(est.success);
+  EXPECT_FALSE(est.failure.empty());
+  EXPECT_FALSE(RobustHomographyEstimator().estimate({}, {}, {320, 240}).success);
+  EXPECT_THROW(RobustHomographyEstimator().estimate({{1, 1}}, {}, {320, 240}), Error);
+}
+
+TEST(RobustHomographyEstimator, RejectsNearSingularH) {
+  RobustHomographyEstimator e;
+  EXPECT_TRUE(e.acceptable(kTruth));
+  EXPECT_FALSE(e.acceptable(cv::Matx33d(1, 0, 0, 1, 0, 0, 0, 0, 1)));  // maps onto a line
+  EXPECT_FALSE(e.acceptable(cv::Matx33d(0.01, 0, 0, 0, 0.01, 0, 0, 0, 1)));
+  EXPECT_FALSE(e.acceptable(cv::Matx33d(1, 0, NAN, 0, 1, 0, 0, 0, 1)));
+}

@@ -1,0 +1,190 @@
+#include "engine/reference/EpipolarGuidedMatcher.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "PlanarTestScene.hpp"
+#include "engine/core/Error.hpp"
+#include "engine/features/CornerDetector.hpp"
+#include "engine/reference/ReferencePreparer.hpp"
+
+using namespace reftrack;
+using reftrack::test::PlanarTestScene;
+
+namespace {
+
+// A looks straight down at the plane from 1 m; B is 25 cm to the side, tilted back at the centre
+// (about 14 degrees of rotation: a wide baseline, as the references are).
+struct TwoViews {
+  PlanarTestScene scene;
+  RigidPose T_A = PlanarTestScene::lookAt({0.0, 0.0, 1.0}, {0.0, 0.0, 0.0});
+  RigidPose T_B = PlanarTestScene::lookAt({0.25, 0.05, 0.97}, {0.0, 0.0, 0.0});
+  cv::Mat grayA = scene.render(T_A), grayB = scene.render(T_B);
+  std::vector<cv::Point2f> cornersA, cornersB;
+  TwoViews() {
+    const CornerDetector detector(ReferencePreparerParams{}.corners);
+    cornersA = positionsOf(detector.detect(grayA));
+    cornersB = positionsOf(detector.detect(grayB));
+  }
+};
+
+const TwoViews& views() {
+  static const TwoViews v;
+  return v;
+}
+
+}  // namespace
+
+TEST(EpipolarGuidedMatcher, ExactCorrespondencesLieOnTheirEpipolarLines) {
+  const TwoViews& v = views();
+  const EpipolarGuidedMatcher matcher(v.scene.camera, v.T_A, v.T_B);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-0.3, 0.3), depth(0.7, 3.0);
+  const RigidPose T_AB = v.T_B * v.T_A.inverse();
+  for (int i = 0; i < 100; ++i) {
+    const Eigen::Vector3d P(u(rng), u(rng), depth(rng));
+    const Eigen::Vector2d pA = v.scene.camera.project(P);
+    const Eigen::Vector2d pB = v.scene.camera.project(T_AB * P);
+    // Exact projections: only round-off (1e-9 px) separates pB from A's epipolar line.
+    EXPECT_LT(matcher.epipolarDistance(pA, pB), 1e-9);
+    // Moving pB by 3 px across the line direction moves it off the line by up to 3 px.
+    const Eigen::Vector3d line = matcher.fundamental() * pA.homogeneous();
+    const Eigen::Vector2d normal = line.head<2>().normalized();
+    EXPECT_NEAR(matcher.epipolarDistance(pA, pB + 3.0 * normal), 3.0, 1e-6);
+  }
+}
+
+TEST(EpipolarGuidedMatcher, MatchesOnAPlaneAreCorrectAndTriangulateOntoIt) {
+  const TwoViews& v = views();
+  const EpipolarGuidedMatcher matcher(v.scene.camera, v.T_A, v.T_B);
+  const EpipolarMatchResult r = matcher.match(v.grayA, v.cornersA, v.grayB, v.cornersB);
+  const Eigen::Matrix3d H = v.scene.homographyAtoB(v.T_A, v.T_B);
+  // Plane z = 0 in camera A: normal n = R_A e_z, offset n . t_A.
+  const Eigen::Vector3d n = v.T_A.rotation().col(2);
+  const double d = n.dot(v.T_A.translation());
+  int wrong = 0;
+  double planeSq = 0.0;
+  for (const ReferenceMatch& m : r.matches) {
+    const cv::Point2f a = v.cornersA[static_cast<size_t>(m.cornerA)];
+    const cv::Point2f b = v.cornersB[static_cast<size_t>(m.cornerB)];
+    const Eigen::Vector3d q = H * Eigen::Vector3d(a.x, a.y, 1.0);
+    // Corner positions are good to a few tenths of a pixel; 1.5 px separates right from wrong.
+    if ((q.head<2>() / q.z() - Eigen::Vector2d(b.x, b.y)).norm() > 1.5) ++wrong;
+    const double off = n.dot(m.pointA) - d;
+    planeSq += off * off;
+  }
+  ASSERT_GT(r.stats.kept, 200) << "mutual " << r.stats.mutualMatches;
+  EXPECT_EQ(r.stats.kept, static_cast<int>(r.matches.size()));
+  EXPECT_EQ(r.scores.size(), r.matches.size());
+  EXPECT_LE(wrong, r.stats.kept / 100) << wrong << " wrong of " << r.stats.kept;
+  // At 1 m with a 25 cm baseline a 0.2 px disparity error is ~1.3 mm of depth.
+  EXPECT_LT(std::sqrt(planeSq / r.stats.kept), 0.002);
+  EXPECT_LT(r.stats.reprojectionRmsPx, 0.3);
+  EXPECT_EQ(r.stats.kept + r.stats.droppedAmbiguous + r.stats.droppedPeakOffset +
+                r.stats.droppedBehindCamera + r.stats.droppedOutsideDepthRange +
+                r.stats.droppedLowParallax + r.stats.droppedReprojection,
+            r.stats.mutualMatches);
+}
+
+TEST(EpipolarGuidedMatcher, AWrongPoseLosesTheCorrectMatches) {
+  const TwoViews& v = views();
+  const Eigen::Matrix3d H = v.scene.homographyAtoB(v.T_A, v.T_B);
+  const auto correctMatches = [&](const RigidPose& T_B) {
+    int correct = 0;
+    for (const ReferenceMatch& m : EpipolarGuidedMatcher(v.scene.camera, v.T_A, T_B)
+                                       .match(v.grayA, v.cornersA, v.grayB, v.cornersB)
+                                       .matches) {
+      const cv::Point2f a = v.cornersA[static_cast<size_t>(m.cornerA)];
+      const cv::Point2f b = v.cornersB[static_cast<size_t>(m.cornerB)];
+      const Eigen::Vector3d q = H * Eigen::Vector3d(a.x, a.y, 1.0);
+      if ((q.head<2>() / q.z() - Eigen::Vector2d(b.x, b.y)).norm() <= 1.5) ++correct;
+    }
+    return correct;
+  };
+  const int right = correctMatches(v.T_B);
+  // B rotated by 3 degrees about its optical axis: epipolar lines move by up to ~17 px, so most
+  // true partners fall outside the 2 px gate.
+  const RigidPose twist(Eigen::AngleAxisd(3.0 * M_PI / 180.0, Eigen::Vector3d::UnitZ()).matrix(),
+                        Eigen::Vector3d::Zero());
+  const int wrong = correctMatches(twist * v.T_B);
+  EXPECT_LT(wrong, right / 3) << right << " vs " << wrong;
+}
+
+TEST(EpipolarGuidedMatcher, DropsAreCountedPerReason) {
+  const TwoViews& v = views();
+  const auto base = EpipolarGuidedMatcher(v.scene.camera, v.T_A, v.T_B)
+                        .match(v.grayA, v.cornersA, v.grayB, v.cornersB)
+                        .stats;
+  // The parallax test runs after the ambiguity, peak, camera and depth tests and before the
+  // reprojection test: raising its bar above the views' ~14 degrees moves exactly the matches
+  // that reached it into its own count.
+  EpipolarMatcherParams parallax;
+  parallax.minParallaxDeg = 45.0;
+  const auto p = EpipolarGuidedMatcher(v.scene.camera, v.T_A, v.T_B, parallax)
+                     .match(v.grayA, v.cornersA, v.grayB, v.cornersB)
+                     .stats;
+  EXPECT_EQ(p.kept, 0);
+  EXPECT_EQ(p.droppedLowParallax, base.kept + base.droppedReprojection + base.droppedLowParallax);
+  EXPECT_EQ(p.droppedAmbiguous, base.droppedAmbiguous);
+
+  // The reprojection test runs last: a bar below the corners' own noise moves kept matches only.
+  EpipolarMatcherParams strict;
+  strict.maxReprojectionErrorPx = 0.02;
+  const auto s = EpipolarGuidedMatcher(v.scene.camera, v.T_A, v.T_B, strict)
+                     .match(v.grayA, v.cornersA, v.grayB, v.cornersB)
+                     .stats;
+  EXPECT_GT(s.droppedReprojection, base.droppedReprojection);
+  EXPECT_EQ(s.kept + s.droppedReprojection, base.kept + base.droppedReprojection);
+
+  // A depth range that excludes the plane (~1 m away) leaves only chance look-alikes.
+  EpipolarMatcherParams near;
+  near.maxDepthMetres = 0.8;
+  const auto d = EpipolarGuidedMatcher(v.scene.camera, v.T_A, v.T_B, near)
+                     .match(v.grayA, v.cornersA, v.grayB, v.cornersB)
+                     .stats;
+  EXPECT_LT(d.kept, base.kept / 10);
+}
+
+TEST(EpipolarGuidedMatcher, RefusesNoBaselineAndBadInput) {
+  const TwoViews& v = views();
+  try {
+    EpipolarGuidedMatcher(v.scene.camera, v.T_A, v.T_A);
+    FAIL() << "no error for identical poses";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("no baseline"), std::string::npos) << e.what();
+  }
+  const EpipolarGuidedMatcher matcher(v.scene.camera, v.T_A, v.T_B);
+  EXPECT_THROW(matcher.match(cv::Mat(), v.cornersA, v.grayB, v.cornersB), Error);
+  EXPECT_EQ(matcher.match(v.grayA, {}, v.grayB, v.cornersB).stats.kept, 0);
+}
+
+TEST(EpipolarMatcherParams, CheckNamesTheBadFieldAndYamlRoundTrips) {
+  EpipolarMatcherParams p;
+  p.maxDepthMetres = 0.01;
+  try {
+    p.check();
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("matching.max_depth_m"), std::string::npos) << e.what();
+  }
+  p = {};
+  p.maxEpipolarDistancePx = std::nan("");
+  EXPECT_THROW(p.check(), Error);
+
+  EpipolarMatcherParams q;
+  q.halfWindow = 4;
+  q.slantDeg = 30.0;
+  q.maxReprojectionErrorPx = 0.7;
+  cv::FileStorage out(".yml", cv::FileStorage::WRITE | cv::FileStorage::MEMORY);
+  out << "matching"
+      << "{";
+  q.write(out);
+  out << "}";
+  cv::FileStorage in(out.releaseAndGetString(), cv::FileStorage::READ | cv::FileStorage::MEMORY);
+  EpipolarMatcherParams r;
+  r.read(in["matching"]);
+  EXPECT_EQ(r.halfWindow, 4);
+  EXPECT_DOUBLE_EQ(r.slantDeg, 30.0);
+  EXPECT_DOUBLE_EQ(r.maxReprojectionErrorPx, 0.7);
+}
