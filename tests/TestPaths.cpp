@@ -1,11 +1,18 @@
 #include "TestPaths.hpp"
 
+#include <unistd.h>
+
+#include <string>
+
 namespace reftrack::test {
 
 std::filesystem::path sourceDir() { return REFTRACK_SOURCE_DIR; }
 
 std::filesystem::path freshTempDir(const std::string& name) {
-  std::filesystem::path dir = std::filesystem::path(REFTRACK_TEST_TMP_DIR) / name;
+  // The process id keeps tests that CTest runs in parallel (one process each) apart, even when
+  // they ask for the same name (for example a suite-wide fixture folder).
+  std::filesystem::path dir = std::filesystem::path(REFTRACK_TEST_TMP_DIR) /
+                              (name + "_" + std::to_string(static_cast<long>(::getpid())));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;

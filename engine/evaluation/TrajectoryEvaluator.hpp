@@ -40,8 +40,9 @@ struct FrameEvaluation {
   double timestamp = 0;           // ground-truth timestamp (s)
   double translationErrorMm = 0;  // ATE of this frame
   double rotationErrorDeg = 0;
-  std::optional<double> cubeErrorPx;            // mean over the visible cube vertices
-  Eigen::Vector3d trueCentre, estimatedCentre;  // camera centres in the (aligned) world, m
+  std::optional<double> cubeErrorPx;                          // mean over the visible cube vertices
+  Eigen::Vector3d trueCentre = Eigen::Vector3d::Zero();       // camera centres in the (aligned)
+  Eigen::Vector3d estimatedCentre = Eigen::Vector3d::Zero();  // world, m
 };
 
 struct TrajectoryEvaluation {

@@ -136,9 +136,9 @@ struct PoseTracker::Impl {
       std::vector<Vector6d> weights(static_cast<std::size_t>(params.pose.arOrder),
                                     Vector6d::Zero());
       weights[0] = Vector6d::Ones();  // AR(p) default: x_pred = x_{k-1}
-      motionModel = ArMotionModel(weights, ArMotionModel::diagonalNoise(
-                                               params.pose.translationSigma,
-                                               params.pose.rotationSigma));
+      motionModel = ArMotionModel(
+          weights,
+          ArMotionModel::diagonalNoise(params.pose.translationSigma, params.pose.rotationSigma));
     }
     regularizer = std::make_unique<TemporalRegularizer>(motionModel, params.pose.estimator,
                                                         params.pose.alpha);

@@ -1,0 +1,183 @@
+// `reftrack eval`: accuracy of an estimated trajectory against ground truth (ATE, RPE, cube
+// reprojection error, jitter, tracked fraction), as text or one JSON object, plus PNG plots.
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <sstream>
+
+#include "app/commands/Commands.hpp"
+#include "app/plot/PlotCanvas.hpp"
+#include "engine/core/Error.hpp"
+#include "engine/evaluation/TrajectoryEvaluator.hpp"
+
+namespace reftrack::app {
+
+namespace {
+
+struct EvalOptions {
+  std::string gt, est, camera, plotDir;
+  bool json = false, noPlots = false;
+  EvaluationParams params;
+};
+
+std::string number(double v) {
+  if (!std::isfinite(v)) return "null";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+std::string jsonString(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    if (static_cast<unsigned char>(c) < 0x20) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\u%04x", c);
+      out += buf;
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
+}
+
+std::string statsJson(const ErrorStats& s) {
+  return "{\"count\": " + std::to_string(s.count) + ", \"rmse\": " + number(s.rmse) +
+         ", \"mean\": " + number(s.mean) + ", \"median\": " + number(s.median) +
+         ", \"p95\": " + number(s.p95) + ", \"max\": " + number(s.max) + "}";
+}
+
+std::string toJson(const TrajectoryEvaluation& ev, const EvalOptions& o,
+                   const std::vector<std::string>& plots) {
+  std::ostringstream j;
+  j << "{\"ground_truth\": " << jsonString(o.gt) << ", \"estimate\": " << jsonString(o.est)
+    << ", \"ground_truth_frames\": " << ev.groundTruthFrames
+    << ", \"estimate_frames\": " << ev.estimateFrames
+    << ", \"associated_frames\": " << ev.associatedFrames
+    << ", \"tracked_fraction\": " << number(ev.trackedFraction)
+    << ", \"aligned\": " << (ev.aligned ? "true" : "false")
+    << ", \"ate_translation_mm\": " << statsJson(ev.ateTranslationMm)
+    << ", \"ate_rotation_deg\": " << statsJson(ev.ateRotationDeg)
+    << ", \"rpe_translation_mm\": " << statsJson(ev.rpeTranslationMm)
+    << ", \"rpe_rotation_deg\": " << statsJson(ev.rpeRotationDeg)
+    << ", \"cube_side_m\": " << number(o.params.cubeSide)
+    << ", \"cube_error_px\": " << (ev.cubeErrorPx ? statsJson(*ev.cubeErrorPx) : "null")
+    << ", \"jitter_mm\": " << (ev.jitterMm ? number(*ev.jitterMm) : "null")
+    << ", \"jitter_px\": " << (ev.jitterPx ? number(*ev.jitterPx) : "null") << ", \"plots\": [";
+  for (std::size_t i = 0; i < plots.size(); ++i) j << (i ? ", " : "") << jsonString(plots[i]);
+  j << "]}";
+  return j.str();
+}
+
+void printText(const TrajectoryEvaluation& ev, const EvalOptions& o) {
+  auto line = [](const char* name, const ErrorStats& s, const char* unit) {
+    std::printf("%-22s rmse %9.3f  mean %9.3f  median %9.3f  p95 %9.3f  max %9.3f  %s\n", name,
+                s.rmse, s.mean, s.median, s.p95, s.max, unit);
+  };
+  std::printf("frames: %zu ground truth, %zu estimated, %zu associated; tracked %.1f%%%s\n",
+              ev.groundTruthFrames, ev.estimateFrames, ev.associatedFrames,
+              100.0 * ev.trackedFraction, ev.aligned ? " (rigidly aligned)" : "");
+  line("ATE translation", ev.ateTranslationMm, "mm");
+  line("ATE rotation", ev.ateRotationDeg, "deg");
+  line("RPE translation/frame", ev.rpeTranslationMm, "mm");
+  line("RPE rotation/frame", ev.rpeRotationDeg, "deg");
+  if (ev.cubeErrorPx)
+    std::printf(
+        "cube (%.3f m) vertex reprojection error: mean %.3f px, 95th percentile %.3f px, "
+        "max %.3f px\n",
+        o.params.cubeSide, ev.cubeErrorPx->mean, ev.cubeErrorPx->p95, ev.cubeErrorPx->max);
+  else
+    std::printf("cube vertex reprojection error: needs --camera\n");
+  if (ev.jitterMm)
+    std::printf("jitter (cube vertices, second differences): %.3f mm%s\n", *ev.jitterMm,
+                ev.jitterPx ? (", " + number(*ev.jitterPx) + " px").c_str() : "");
+  else
+    std::printf("jitter: needs three consecutive tracked frames\n");
+}
+
+std::vector<std::string> writePlots(const TrajectoryEvaluation& ev, const EvalOptions& o) {
+  namespace fs = std::filesystem;
+  const fs::path est(o.est);
+  const fs::path dir =
+      o.plotDir.empty() ? (est.has_parent_path() ? est.parent_path() : ".") : fs::path(o.plotDir);
+  if (!fs::is_directory(dir)) throw Error("plot folder '" + dir.string() + "' does not exist");
+  const std::string stem = est.stem().string();
+  std::vector<double> t, ate, rot, cube, gx, gy, ex, ey;
+  for (const FrameEvaluation& f : ev.frames) {
+    t.push_back(f.timestamp - ev.frames.front().timestamp);
+    ate.push_back(f.translationErrorMm);
+    rot.push_back(f.rotationErrorDeg);
+    cube.push_back(f.cubeErrorPx.value_or(std::nan("")));
+    gx.push_back(f.trueCentre.x()), gy.push_back(f.trueCentre.y());
+    ex.push_back(f.estimatedCentre.x()), ey.push_back(f.estimatedCentre.y());
+  }
+  std::vector<std::string> written;
+  PlotCanvas error("Error over time: " + stem, "time (s)", "error");
+  error.addLine("ATE translation (mm)", t, ate, cv::Scalar(200, 80, 0));
+  error.addLine("ATE rotation (deg)", t, rot, cv::Scalar(0, 140, 0));
+  if (ev.cubeErrorPx) error.addLine("cube vertices (px)", t, cube, cv::Scalar(0, 0, 220));
+  const fs::path errorPng = dir / (stem + ".error.png");
+  error.save(errorPng);
+  written.push_back(errorPng.string());
+
+  PlotCanvas top("Camera centres, top view: " + stem, "x (m)", "y (m)");
+  top.setEqualAspect(true);
+  top.addLine("ground truth", gx, gy, cv::Scalar(60, 60, 60));
+  top.addScatter("estimate", ex, ey, cv::Scalar(0, 0, 220));
+  top.addScatter("marker", {0.0}, {0.0}, cv::Scalar(200, 80, 0));
+  const fs::path topPng = dir / (stem + ".topview.png");
+  top.save(topPng);
+  written.push_back(topPng.string());
+  return written;
+}
+
+void runEval(const EvalOptions& o) {
+  const TumTrajectory gt = TumTrajectory::load(o.gt);
+  const TumTrajectory est = TumTrajectory::load(o.est);
+  std::unique_ptr<PinholeCamera> camera;
+  if (!o.camera.empty()) camera = std::make_unique<PinholeCamera>(PinholeCamera::load(o.camera));
+  const TrajectoryEvaluation ev = evaluateTrajectory(gt, est, o.params, camera.get());
+  std::vector<std::string> plots;
+  if (!o.noPlots) plots = writePlots(ev, o);
+  if (o.json) {
+    std::printf("%s\n", toJson(ev, o, plots).c_str());
+    return;
+  }
+  printText(ev, o);
+  for (const std::string& p : plots) std::printf("wrote %s\n", p.c_str());
+}
+
+CommandRegistration registerEvalCommand(CLI::App& parent) {
+  auto options = std::make_shared<EvalOptions>();
+  CLI::App* sub = parent.add_subcommand(
+      "eval", "Compare an estimated trajectory with ground truth (ATE, RPE, cube error, jitter)");
+  sub->add_option("--gt", options->gt, "ground-truth trajectory (TUM)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  sub->add_option("--est", options->est, "estimated trajectory (TUM)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  sub->add_option("--camera", options->camera, "camera.yml: enables the cube reprojection error")
+      ->check(CLI::ExistingFile);
+  sub->add_option("--cube", options->params.cubeSide, "side of the virtual cube (m)")
+      ->capture_default_str()
+      ->check(CLI::Range(1e-6, 1e3));
+  sub->add_option("--max-dt", options->params.maxTimeDifference,
+                  "largest timestamp difference for association (s)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1e6));
+  sub->add_flag("--align", options->params.align,
+                "rigidly align the estimate to the ground truth first (Umeyama, no scale)");
+  sub->add_flag("--json", options->json, "print one JSON object instead of text");
+  sub->add_option("--plots", options->plotDir,
+                  "folder for EST.error.png and EST.topview.png (default: beside --est)");
+  sub->add_flag("--no-plots", options->noPlots, "write no plots");
+  return {sub, [options] { runEval(*options); }};
+}
+
+const CommandRegistrar registrar(60, registerEvalCommand);
+
+}  // namespace
+
+}  // namespace reftrack::app

@@ -1,0 +1,125 @@
+// `reftrack track`: runs a tracker over a frame source. Two modes: `homography` registers every
+// frame to one reference image (paper Sec. 7.3; per-frame CSV of status, inlier ratio, H and
+// milliseconds; labels drawn at their mapped positions in the recording) and `6dof` tracks the
+// full pose against a prepared reference map (runSixDofTrack).
+#include <cstdio>
+#include <memory>
+
+#include "app/commands/Commands.hpp"
+#include "app/homography/HomographyTrackRun.hpp"
+#include "app/tracking/SixDofTrack.hpp"
+#include "engine/config/TrackerParams.hpp"
+#include "engine/core/Error.hpp"
+
+namespace reftrack::app {
+
+namespace {
+
+struct TrackArgs {
+  std::string mode;  // empty: chosen from the other options
+  std::filesystem::path reference, map, labels, csv, record, trajectory, params, motion;
+  std::string input;
+  int frames = -1;
+  double cube = 0.1;
+};
+
+// --mode when given; else homography with --reference, 6dof with --map, else the params' mode.
+TrackingMode chooseMode(const TrackArgs& a) {
+  if (!a.mode.empty()) return parseTrackingMode(a.mode);
+  if (!a.reference.empty()) return TrackingMode::Homography;
+  if (!a.map.empty()) return TrackingMode::SixDof;
+  if (!a.params.empty()) return TrackerParams::load(a.params).mode;
+  throw CLI::ValidationError("--mode", "give --reference (homography) or --map (6dof)");
+}
+
+// Options that only one mode uses; naming them in the other mode is a usage error.
+void checkModeOptions(const TrackArgs& a, TrackingMode mode) {
+  const auto forbid = [](bool given, const std::string& option, const std::string& modeName) {
+    if (given) throw CLI::ValidationError(option, "is not used in " + modeName + " mode");
+  };
+  if (mode == TrackingMode::Homography) {
+    if (a.reference.empty())
+      throw CLI::ValidationError("--reference", "is required in homography mode");
+    forbid(!a.map.empty(), "--map", "homography");
+    forbid(!a.trajectory.empty(), "--trajectory", "homography");
+    forbid(!a.motion.empty(), "--motion", "homography");
+  } else {
+    if (a.map.empty()) throw CLI::ValidationError("--map", "is required in 6dof mode");
+    forbid(!a.reference.empty(), "--reference", "6dof");
+    forbid(!a.labels.empty(), "--labels", "6dof");
+  }
+}
+
+CommandRegistration registerTrackCommand(CLI::App& parent) {
+  auto args = std::make_shared<TrackArgs>();
+  CLI::App* sub =
+      parent.add_subcommand("track", "Track a video, image folder, camera or simulation");
+  sub->add_option("--mode", args->mode, "homography | 6dof (default: from the other options)")
+      ->check(CLI::IsMember({"homography", "6dof"}));
+  sub->add_option("--input", args->input,
+                  "Video file, image folder or glob, camera:N or sim:PRESET")
+      ->required();
+  sub->add_option("--reference", args->reference, "Homography: the stored reference frame")
+      ->check(CLI::ExistingFile);
+  sub->add_option("--labels", args->labels, "Homography: labels YAML (text, x, y per label)")
+      ->check(CLI::ExistingFile);
+  sub->add_option("--map", args->map, "6dof: folder written by `reftrack prepare`")
+      ->check(CLI::ExistingDirectory);
+  sub->add_option("--out-csv", args->csv, "Per-frame CSV");
+  sub->add_option("--record", args->record, "MP4 of the registered overlay");
+  sub->add_option("--trajectory", args->trajectory, "6dof: TUM trajectory (camera in world)");
+  sub->add_option("--params", args->params, "TrackerParams YAML")->check(CLI::ExistingFile);
+  sub->add_option("--motion", args->motion, "6dof: fitted motion model (fit-motion output)")
+      ->check(CLI::ExistingFile);
+  sub->add_option("--frames", args->frames, "Process at most N frames")
+      ->check(CLI::Range(1, 100000000));
+  sub->add_option("--cube", args->cube, "6dof: cube edge in the recording (metres)")
+      ->check(CLI::Range(1e-4, 100.0))
+      ->capture_default_str();
+  sub->footer(
+      "Homography CSV columns: index,status,inlier_ratio,h11..h33,ms — status tracked|lost, H\n"
+      "maps reference pixels to frame pixels (identity when lost), ms the tracker's time.\n"
+      "Labels YAML: labels: [ { text: \"Tower\", x: 120.5, y: 80.0 }, ... ] in reference pixels.");
+  sub->parse_complete_callback([args] {
+    try {
+      checkModeOptions(*args, chooseMode(*args));
+    } catch (const Error& e) {  // an unreadable --params file
+      throw CLI::ValidationError("--params", e.what());
+    }
+  });
+  return {sub, [args] {
+            if (chooseMode(*args) == TrackingMode::SixDof) {
+              SixDofTrackOptions o;
+              o.map = args->map;
+              o.input = args->input;
+              o.params = args->params;
+              o.motion = args->motion;
+              o.trajectory = args->trajectory;
+              o.csv = args->csv;
+              o.record = args->record;
+              o.maxFrames = args->frames;
+              o.cubeSize = args->cube;
+              runSixDofTrack(o);
+              return;
+            }
+            HomographyTrackOptions o;
+            o.reference = args->reference;
+            o.input = args->input;
+            o.labels = args->labels;
+            o.params = args->params;
+            o.csv = args->csv;
+            o.record = args->record;
+            o.maxFrames = args->frames;
+            const HomographyTrackSummary s = runHomographyTrack(o);
+            std::printf("homography: %d frames, %d tracked (%.1f%%), median %.2f ms per frame\n",
+                        s.frames, s.tracked, 100.0 * s.tracked / s.frames, s.medianMs);
+            if (!o.csv.empty()) std::printf("per-frame CSV: %s\n", o.csv.string().c_str());
+            if (!o.record.empty()) std::printf("recording: %s\n", o.record.string().c_str());
+          }};
+}
+
+const CommandRegistrar registrar(40, registerTrackCommand);
+
+}  // namespace
+
+}  // namespace reftrack::app

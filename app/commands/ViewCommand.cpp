@@ -1,0 +1,122 @@
+// `reftrack view`: the AR viewer — frames from a video, an image folder or glob, a live camera or
+// the simulator, the virtual object drawn at the tracked pose, ImGui panels, recording; in a
+// window, or headless (OSMesa/EGL) for screenshots and recordings.
+#include <iostream>
+#include <memory>
+#include <opencv2/imgcodecs.hpp>
+
+#include "app/commands/Commands.hpp"
+#include "app/simulator/SimulationOptions.hpp"
+#include "app/viewer/HomographyFrameTracker.hpp"
+#include "app/viewer/ModeSwitchingTracker.hpp"
+#include "app/viewer/PoseFrameTracker.hpp"
+#include "app/viewer/ViewerApp.hpp"
+#include "engine/core/Error.hpp"
+
+namespace reftrack::app {
+
+namespace {
+
+struct ViewArgs {
+  ViewerOptions options;
+  double cubeSize = 0.0;
+  std::string simSize = "640x480";
+  std::filesystem::path map, reference, labels;
+};
+
+CLI::Validator imageSizeValidator() {
+  return CLI::Validator(
+      [](std::string& text) {
+        return parseImageSize(text) ? std::string() : "expected WIDTHxHEIGHT, for example 640x480";
+      },
+      "WxH");
+}
+
+CommandRegistration registerViewCommand(CLI::App& parent) {
+  auto args = std::make_shared<ViewArgs>();
+  ViewerOptions& o = args->options;
+  CLI::App* sub = parent.add_subcommand(
+      "view", "Show (or record) the virtual object over video at the tracked pose");
+  sub->footer(
+      "SRC: a video file, a folder of images, a glob (\"frames/*.png\"), camera:N (live camera)\n"
+      "or sim:PRESET (the simulator on the fly: handheld, orbit, rotate, static, forward).\n"
+      "Poses come from the 6-DOF tracker (--map), the homography tracker (--reference), or a\n"
+      "replayed trajectory (--poses, TUM camera in world); sim: inputs without them replay\n"
+      "their ground truth. Recording writes OUT.mp4 (one frame per processed frame, at\n"
+      "the source frame rate) and OUT_trajectory.txt (TUM) beside it.");
+  sub->add_option("--input", o.input, "Frame source SRC")->required();
+  sub->add_option("--camera", o.camera, "camera.yml (required unless SRC is sim:)")
+      ->check(CLI::ExistingFile);
+  sub->add_option("--poses", o.poses, "TUM trajectory to replay as the poses")
+      ->check(CLI::ExistingFile);
+  sub->add_option("--params", o.params, "Parameter YAML (TrackerParams + overlay section)")
+      ->check(CLI::ExistingFile);
+  sub->add_option("--overlay-cube", args->cubeSize, "Cube edge length in metres")
+      ->check(CLI::PositiveNumber);
+  sub->add_option("--model", o.model, "OBJ model drawn instead of the cube")
+      ->check(CLI::ExistingFile);
+  sub->add_flag("--headless", o.headless, "No window: render off-screen (OSMesa/EGL)");
+  sub->add_option("--frames", o.maxFrames, "Stop after N frames")->check(CLI::Range(1, 100000000));
+  sub->add_option("--record", o.record, "Record the composited output to this .mp4");
+  sub->add_option("--screenshot", o.screenshot, "Save the last drawn image to this .png");
+  sub->add_flag("--ui", o.ui, "Headless: draw the ImGui panels too");
+  sub->add_option("--fps", o.source.imageFps, "Frame rate of image folders and sim: inputs")
+      ->check(CLI::Range(0.001, 1000.0))
+      ->capture_default_str();
+  sub->add_option("--map", args->map, "Reference map folder (`reftrack prepare`): 6-DOF tracking")
+      ->check(CLI::ExistingDirectory);
+  sub->add_option("--reference", args->reference, "Reference frame: homography tracking")
+      ->check(CLI::ExistingFile);
+  sub->add_option("--labels", args->labels, "Homography mode: labels YAML of the reference frame")
+      ->check(CLI::ExistingFile);
+  sub->add_option("--sim-frames", o.source.simFrames, "Length of a sim: sequence")
+      ->check(CLI::Range(1, 1000000))
+      ->capture_default_str();
+  sub->add_option("--sim-size", args->simSize, "Image size of a sim: sequence")
+      ->check(imageSizeValidator())
+      ->capture_default_str();
+
+  return {sub, [args, sub] {
+            ViewerOptions options = args->options;
+            if (sub->count("--overlay-cube") > 0) options.cubeSize = args->cubeSize;
+            options.source.simSize = *parseImageSize(args->simSize);
+            if (!args->map.empty() || !args->reference.empty()) {
+              // Live tracking: 6-DOF against the map and/or homography against the reference;
+              // the Tracking panel's mode switch selects between those given.
+              const std::filesystem::path map = args->map, reference = args->reference,
+                                          labels = args->labels;
+              options.makeTracker = [map, reference, labels](const PinholeCamera& camera,
+                                                             const TrackerParams& params) {
+                std::unique_ptr<FrameTracker> sixDof, homography;
+                if (!map.empty())
+                  sixDof = std::make_unique<PoseFrameTracker>(ReferenceMap::load(map), params);
+                if (!reference.empty()) {
+                  const cv::Mat ref = cv::imread(reference.string(), cv::IMREAD_COLOR);
+                  if (ref.empty())
+                    throw Error("reference frame '" + reference.string() + "' cannot be read");
+                  homography = std::make_unique<HomographyFrameTracker>(
+                      ref, params, camera,
+                      labels.empty() ? AnnotationSet{} : AnnotationSet::load(labels));
+                }
+                const TrackingMode initial = map.empty()         ? TrackingMode::Homography
+                                             : reference.empty() ? TrackingMode::SixDof
+                                                                 : params.mode;
+                return std::unique_ptr<FrameTracker>(std::make_unique<ModeSwitchingTracker>(
+                    std::move(sixDof), std::move(homography), initial));
+              };
+            }
+            const ViewerRunSummary s = runViewer(options);
+            std::cout << "processed " << s.framesProcessed << " frames in " << s.seconds << " s ("
+                      << s.backend << ")\n";
+            if (!s.recording.empty())
+              std::cout << "recorded " << s.recording.string() << " and " << s.trajectory.string()
+                        << "\n";
+            if (!s.screenshot.empty()) std::cout << "screenshot " << s.screenshot.string() << "\n";
+          }};
+}
+
+const CommandRegistrar registrar(50, registerViewCommand);
+
+}  // namespace
+
+}  // namespace reftrack::app

@@ -1,0 +1,43 @@
+#pragma once
+// Pure-rotation sweep of homography mode (paper Fig. 15/16: 33 degree field of view, 100 image
+// pairs per angle, no prior on the motion). For each angle the camera pans about its optical
+// centre (alternately left and right) away from reference view A; each trial pairs a freshly
+// noised reference with a freshly noised rotated frame and registers them cold (unguided), as
+// the paper did. The true homography K R K^-1 gives exact annotation ground truth: the error is
+// the mean deviation of a grid of reference annotations that lie inside the frame.
+// Rendering needs a current GL context (render::createHeadlessContext()).
+#include <cstdint>
+#include <opencv2/core.hpp>
+#include <vector>
+
+#include "engine/config/TrackerParams.hpp"
+
+namespace reftrack::app {
+
+struct RotationSweepOptions {
+  cv::Size size{320, 240};
+  double fovDeg = 33.0;  // horizontal
+  double maxAngleDeg = 33.0;
+  double stepDeg = 3.0;
+  int trials = 100;  // per angle
+  double noiseSigma = 2.0;
+  std::uint64_t seed = 1;
+  TrackerParams params;
+  void check() const;  // throws reftrack::Error naming the bad field
+};
+
+struct RotationStep {
+  double angleDeg = 0.0;
+  double overlap = 0.0;  // fraction of the frame that sees the reference (mean of both pans)
+  int trials = 0;
+  int successes = 0;
+  double meanErrorPx = 0.0;    // annotation error over the successful trials (NaN if none)
+  double medianErrorPx = 0.0;  // (NaN if none)
+  double maxErrorPx = 0.0;
+  double medianMs = 0.0;  // registration time per trial
+};
+
+// One step per angle 0, step, 2 step, ... up to maxAngleDeg.
+std::vector<RotationStep> runRotationSweep(const RotationSweepOptions& options);
+
+}  // namespace reftrack::app

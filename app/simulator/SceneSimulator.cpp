@@ -1,0 +1,89 @@
+#include "app/simulator/SceneSimulator.hpp"
+
+#include "app/simulator/DeskScene.hpp"
+#include "app/simulator/LookAt.hpp"
+#include "app/simulator/SensorNoise.hpp"
+#include "engine/core/Error.hpp"
+
+namespace reftrack::app {
+
+namespace {
+constexpr int kSupersample = 3;
+constexpr int kBlurSubframes = 5;
+const cv::Scalar kBackgroundBgr(70, 70, 70);  // beyond the desk and walls
+// Noise streams of the reference images, apart from every frame index.
+constexpr std::uint64_t kReferenceStream = 0x5245464552454E43ull;
+}  // namespace
+
+SceneSimulator::SceneSimulator(SimulationOptions options) : options_(std::move(options)) {
+  options_.check();
+  camera_ = PinholeCamera::fromFieldOfView(options_.size, options_.fovDeg);
+  const DeskScene scene = buildDeskScene();
+  marker_ = scene.marker;
+  referenceA_ = lookAtPose(scene.referenceEyeA, scene.contentCentre);
+  referenceB_ = lookAtPose(scene.referenceEyeB, scene.contentCentre);
+  path_ = std::make_unique<CameraPath>(options_, scene.referenceEyeA, scene.contentCentre);
+  renderer_ = std::make_unique<render::SceneRenderer>();
+  for (const render::TexturedMesh& mesh : scene.meshes) renderer_->addMesh(mesh);
+}
+
+SceneSimulator::~SceneSimulator() = default;
+
+RigidPose SceneSimulator::framePose(int k) const {
+  if (k < 0 || k >= options_.frames)
+    throw Error("simulated frame " + std::to_string(k) + " is outside 0.." +
+                std::to_string(options_.frames - 1));
+  return path_->at(k);
+}
+
+render::PinholeView SceneSimulator::view(const RigidPose& worldToCamera) const {
+  if (!worldToCamera.allFinite()) throw Error("simulator: camera pose contains NaN or infinity");
+  render::PinholeView v;
+  v.K = camera_.K();
+  v.imageSize = camera_.imageSize();
+  v.worldToCamera = worldToCamera.matrix4();
+  v.nearPlane = 0.02;
+  v.farPlane = 20.0;
+  return v;
+}
+
+cv::Mat SceneSimulator::renderClean(const RigidPose& worldToCamera) {
+  return renderer_->render(view(worldToCamera), kSupersample, nullptr, kBackgroundBgr);
+}
+
+cv::Mat SceneSimulator::renderView(const RigidPose& worldToCamera, std::uint64_t noiseSeed,
+                                   double noiseSigma) {
+  return addSensorNoise(renderClean(worldToCamera), noiseSeed, noiseSigma);
+}
+
+cv::Mat SceneSimulator::renderFrame(int k) {
+  const RigidPose pose = framePose(k);
+  const std::uint64_t seed = mixSeed(options_.seed, static_cast<std::uint64_t>(k));
+  if (!options_.blur) return renderView(pose, seed, options_.noiseSigma);
+  cv::Mat sum(camera_.imageSize(), CV_32FC3, cv::Scalar::all(0));
+  for (int i = 0; i < kBlurSubframes; ++i) {
+    const double s = k - 0.5 + (i + 0.5) / kBlurSubframes;
+    cv::Mat sub;
+    renderClean(path_->at(s)).convertTo(sub, CV_32FC3);
+    sum += sub;
+  }
+  return addSensorNoise(sum / kBlurSubframes, seed, options_.noiseSigma);
+}
+
+cv::Mat SceneSimulator::renderReference(char which) {
+  if (which != 'A' && which != 'B')
+    throw Error(std::string("simulator: reference view must be 'A' or 'B', got '") + which + "'");
+  return renderView(which == 'A' ? referenceA_ : referenceB_,
+                    mixSeed(mixSeed(options_.seed, kReferenceStream), static_cast<unsigned>(which)),
+                    options_.noiseSigma);
+}
+
+cv::Mat SceneSimulator::renderDepth(const RigidPose& worldToCamera) {
+  // No supersampling: each pixel's depth is that of the surface at its centre, not a blend of
+  // surfaces across an edge.
+  cv::Mat depth;
+  renderer_->render(view(worldToCamera), 1, &depth, kBackgroundBgr);
+  return depth;
+}
+
+}  // namespace reftrack::app

@@ -1,0 +1,31 @@
+#pragma once
+// SimulationOptions: what `reftrack simulate` renders — camera path preset, frame count, image
+// size, seed (sensor noise and hand shake; the scene itself never changes), noise level, motion
+// blur, field of view and frame rate. check() throws reftrack::Error naming the bad field.
+#include <cstdint>
+#include <opencv2/core.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace reftrack::app {
+
+struct SimulationOptions {
+  std::string preset = "handheld";  // handheld | orbit | rotate | static | forward
+  int frames = 300;
+  cv::Size size{640, 480};
+  std::uint64_t seed = 1;
+  double noiseSigma = 2.0;  // sensor noise SD in grey levels
+  bool blur = false;        // motion blur (average of sub-frame renders)
+  double fovDeg = 60.0;     // horizontal field of view
+  double fps = 30.0;
+  void check() const;  // throws reftrack::Error naming the bad field
+};
+
+// The camera path presets, in the order `reftrack simulate --help` lists them.
+const std::vector<std::string>& simulationPresets();
+
+// "640x480" -> 640x480; nullopt unless it is two positive integers joined by 'x'.
+std::optional<cv::Size> parseImageSize(const std::string& text);
+
+}  // namespace reftrack::app

@@ -1,0 +1,119 @@
+#include "app/simulator/SimulationWriter.hpp"
+
+#include <cstdio>
+#include <future>
+#include <opencv2/imgcodecs.hpp>
+#include <regex>
+#include <string>
+#include <vector>
+
+#include "app/cli/ProgressBar.hpp"
+#include "engine/core/AtomicFile.hpp"
+#include "engine/core/Error.hpp"
+#include "engine/geometry/TumTrajectory.hpp"
+
+namespace reftrack::app {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string frameName(int k) {
+  char name[32];
+  std::snprintf(name, sizeof name, "%06d.png", k);
+  return name;
+}
+
+void writePng(const fs::path& file, const cv::Mat& image) {
+  // Level 1: noisy frames barely compress further, and encoding dominates the write time.
+  const std::vector<int> params = {cv::IMWRITE_PNG_COMPRESSION, 1};
+  writeFileAtomically(file, [&](const fs::path& tmp) {
+    if (!cv::imwrite(tmp.string(), image, params))
+      throw Error("cannot write image '" + file.string() + "'");
+  });
+}
+
+void makeFolder(const fs::path& dir) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec || !fs::is_directory(dir))
+    throw Error("cannot create output folder '" + dir.string() +
+                "': " + (ec ? ec.message() : std::string("a file of that name exists")));
+}
+
+// Frames left by an earlier, longer run would not match groundtruth.txt.
+void removeStaleFrames(const fs::path& framesDir, int frames) {
+  static const std::regex framePattern("([0-9]{6})\\.png");
+  for (const fs::directory_entry& entry : fs::directory_iterator(framesDir)) {
+    std::smatch m;
+    const std::string name = entry.path().filename().string();
+    if (std::regex_match(name, m, framePattern) && std::stoi(m[1].str()) >= frames)
+      fs::remove(entry.path());
+  }
+}
+
+void writeSceneDescription(const SceneSimulator& sim, const fs::path& file) {
+  const SimulationOptions& o = sim.options();
+  writeFileAtomically(file, [&](const fs::path& tmp) {
+    cv::FileStorage out(tmp.string(), cv::FileStorage::WRITE | cv::FileStorage::FORMAT_YAML);
+    if (!out.isOpened()) throw Error("cannot write '" + file.string() + "'");
+    out << "world_frame"
+        << "marker frame: origin at the marker centre, x right, y up on the printed marker, z out "
+           "of the desk (desk plane z = 0); metres";
+    out << "marker_dictionary" << sim.marker().dictionary;
+    out << "marker_id" << sim.marker().id;
+    out << "marker_side_m" << sim.marker().sideMetres;
+    out << "marker" << sim.marker().toString();
+    out << "preset" << o.preset;
+    out << "seed" << std::to_string(o.seed);  // text: FileStorage integers are 32-bit
+    out << "fps" << o.fps;
+    out << "frame_count" << o.frames;
+    out << "image_width" << o.size.width << "image_height" << o.size.height;
+    out << "fov_deg" << o.fovDeg;
+    out << "noise_sigma" << o.noiseSigma;
+    out << "motion_blur" << (o.blur ? 1 : 0);
+    out << "poses"
+        << "groundtruth.txt and references.txt: TUM, camera pose in the world (camera->world)";
+    out.release();
+  });
+}
+
+}  // namespace
+
+void writeSimulation(SceneSimulator& sim, const fs::path& outDir) {
+  const SimulationOptions& o = sim.options();
+  const fs::path framesDir = outDir / "frames";
+  makeFolder(framesDir);
+  std::error_code ec;
+  fs::remove(outDir / "groundtruth.txt", ec);
+  removeStaleFrames(framesDir, o.frames);
+
+  sim.camera().save(outDir / "camera.yml");
+  writeSceneDescription(sim, outDir / "scene.yml");
+  TumTrajectory references;
+  references.poses = {{0.0, sim.referencePoseA()}, {1.0, sim.referencePoseB()}};
+  references.save(outDir / "references.txt");
+  writePng(outDir / "reference_a.png", sim.renderReference('A'));
+  writePng(outDir / "reference_b.png", sim.renderReference('B'));
+
+  // Render frame k (GL, this thread) while frame k-1 is encoded on another thread.
+  TumTrajectory groundTruth;
+  ProgressBar progress("simulate " + o.preset, static_cast<std::size_t>(o.frames));
+  std::future<void> pending;
+  for (int k = 0; k < o.frames; ++k) {
+    groundTruth.poses.push_back({k / o.fps, sim.framePose(k)});
+    cv::Mat frame = sim.renderFrame(k);
+    if (pending.valid()) {
+      pending.get();
+      progress.advance();
+    }
+    pending = std::async(std::launch::async, [file = framesDir / frameName(k),
+                                              image = std::move(frame)] { writePng(file, image); });
+  }
+  pending.get();
+  progress.advance();
+  groundTruth.save(outDir / "groundtruth.txt");
+  progress.finish();
+}
+
+}  // namespace reftrack::app

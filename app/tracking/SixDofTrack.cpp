@@ -1,0 +1,129 @@
+#include "app/tracking/SixDofTrack.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <iomanip>
+#include <sstream>
+
+#include "app/cli/ProgressBar.hpp"
+#include "app/sources/FrameSourceFactory.hpp"
+#include "app/viewer/OverlayCompositor.hpp"
+#include "app/viewer/PoseFrameTracker.hpp"
+#include "app/viewer/VideoRecorder.hpp"
+#include "engine/core/AtomicFile.hpp"
+#include "engine/core/Error.hpp"
+#include "engine/geometry/TumTrajectory.hpp"
+#include "render/context/GlContext.hpp"
+
+namespace reftrack::app {
+
+namespace {
+
+const char* kStages[] = {"corners", "frame-to-frame", "initialise", "match A",
+                         "match B", "outliers",       "pose"};
+
+std::string csvHeader() {
+  std::string h =
+      "index,timestamp,status,tx,ty,tz,qx,qy,qz,qw,corners,matches_a,matches_b,three_view,"
+      "inliers,ms_total";
+  for (const char* s : kStages) {
+    std::string name = s;
+    std::replace(name.begin(), name.end(), ' ', '_');
+    std::replace(name.begin(), name.end(), '-', '_');
+    h += ",ms_" + name;
+  }
+  return h + "\n";
+}
+
+}  // namespace
+
+int runSixDofTrack(const SixDofTrackOptions& o) {
+  const ReferenceMap map = ReferenceMap::load(o.map);
+  TrackerParams params = o.params.empty() ? TrackerParams{} : TrackerParams::load(o.params);
+  params.mode = TrackingMode::SixDof;
+  if (!o.motion.empty()) params.pose.motionModelFile = o.motion.string();
+  params.check();
+
+  // One headless GL context for the simulator source and the recorded overlay.
+  std::unique_ptr<render::GlContext> gl;
+  if (isSimulatorInput(o.input) || !o.record.empty()) gl = render::createHeadlessContext();
+  FrameSourceOptions sourceOptions;
+  sourceOptions.simSize = map.camera.imageSize();
+  std::unique_ptr<FrameSource> source = openFrameSource(o.input, sourceOptions);
+
+  PoseFrameTracker tracker(map, params);
+  std::unique_ptr<OverlayCompositor> compositor;
+  std::unique_ptr<VideoRecorder> recorder;
+  OverlaySettings overlay;
+  overlay.size = o.cubeSize;
+  if (!o.record.empty()) {
+    compositor = std::make_unique<OverlayCompositor>();
+    recorder = std::make_unique<VideoRecorder>(o.record, source->fps(), map.camera.imageSize());
+  }
+
+  std::ostringstream csv;
+  csv << csvHeader() << std::setprecision(10);
+  TumTrajectory trajectory;
+  const int total = o.maxFrames > 0
+                        ? std::min(o.maxFrames, source->frameCount().value_or(o.maxFrames))
+                        : source->frameCount().value_or(0);
+  ProgressBar progress("track 6dof", static_cast<std::size_t>(std::max(total, 0)));
+  int processed = 0, tracked = 0;
+  std::vector<double> ms;
+  while (o.maxFrames < 0 || processed < o.maxFrames) {
+    std::optional<Frame> frame = source->next();
+    if (!frame) break;
+    const TrackingResult result = tracker.process(frame->image, frame->index, frame->timestamp);
+    const PoseTrackingResult& r = tracker.last();
+    ms.push_back(r.totalMs);
+    csv << frame->index << ',' << frame->timestamp << ',' << toString(r.state);
+    if (r.worldToCamera) {
+      ++tracked;
+      trajectory.poses.push_back({frame->timestamp, *r.worldToCamera});
+      const RigidPose camInWorld = r.worldToCamera->inverse();
+      const Eigen::Quaterniond q(camInWorld.rotation());
+      const Eigen::Vector3d c = camInWorld.translation();
+      csv << ',' << c.x() << ',' << c.y() << ',' << c.z() << ',' << q.x() << ',' << q.y() << ','
+          << q.z() << ',' << q.w();
+    } else {
+      csv << ",,,,,,,";
+    }
+    csv << ',' << r.corners << ',' << r.matchesA << ',' << r.matchesB << ',' << r.threeView << ','
+        << r.inliers << ',' << r.totalMs;
+    for (const char* s : kStages) {
+      csv << ',';
+      for (const StageTiming& t : r.timings)
+        if (t.stage == s) csv << t.ms;
+    }
+    csv << '\n';
+    if (recorder) {
+      const cv::Mat composite =
+          compositor->composite(frame->image, map.camera, result, overlay,
+                                "frame " + std::to_string(frame->index) + "  " + result.status);
+      recorder->write(composite, frame->timestamp, r.worldToCamera);
+    }
+    ++processed;
+    progress.advance();
+  }
+  progress.finish();
+  if (processed == 0) throw Error("input '" + o.input + "' gave no frames");
+  if (recorder) recorder->close();
+  if (!o.trajectory.empty()) trajectory.save(o.trajectory);
+  if (!o.csv.empty())
+    writeFileAtomically(o.csv, [&](const std::filesystem::path& tmp) {
+      std::FILE* f = std::fopen(tmp.c_str(), "w");
+      if (!f) throw Error("cannot write " + o.csv.string());
+      const std::string text = csv.str();
+      const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
+      if (std::fclose(f) != 0 || !ok) throw Error("cannot write " + o.csv.string());
+    });
+  std::nth_element(ms.begin(), ms.begin() + static_cast<long>(ms.size() / 2), ms.end());
+  std::printf("6dof: %d frames, %d tracked (%.1f%%), median %.2f ms per frame\n", processed,
+              tracked, 100.0 * tracked / processed, ms[ms.size() / 2]);
+  if (!o.trajectory.empty()) std::printf("trajectory: %s\n", o.trajectory.string().c_str());
+  if (!o.csv.empty()) std::printf("per-frame CSV: %s\n", o.csv.string().c_str());
+  if (recorder) std::printf("recording: %s\n", o.record.string().c_str());
+  return processed;
+}
+
+}  // namespace reftrack::app

@@ -1,0 +1,25 @@
+#pragma once
+// `reftrack track --mode 6dof`: runs the PoseTracker over a frame source against a prepared
+// reference map and writes the TUM trajectory of T_k, the per-frame CSV and, optionally, the
+// recorded overlay. Called by TrackCommand for the 6dof mode.
+#include <filesystem>
+#include <string>
+
+namespace reftrack::app {
+
+struct SixDofTrackOptions {
+  std::filesystem::path map;         // folder written by `reftrack prepare`
+  std::string input;                 // video file, image folder/glob (as `view --input`)
+  std::filesystem::path params;      // optional TrackerParams YAML
+  std::filesystem::path motion;      // optional fitted motion model (fit-motion output)
+  std::filesystem::path trajectory;  // TUM output (camera in world); empty = none
+  std::filesystem::path csv;         // per-frame CSV; empty = none
+  std::filesystem::path record;      // MP4 of the registered overlay; empty = none
+  int maxFrames = -1;                // -1 = all
+  double cubeSize = 0.1;             // metres, for the recorded overlay
+};
+
+// Returns the number of frames processed; throws reftrack::Error on bad input.
+int runSixDofTrack(const SixDofTrackOptions& options);
+
+}  // namespace reftrack::app

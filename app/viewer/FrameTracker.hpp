@@ -1,0 +1,47 @@
+#pragma once
+// FrameTracker: what the viewer loop (window, headless, demo, `track --record`) calls once per
+// frame. Implementations: TrajectoryReplayTracker (poses from a TUM file); the homography and
+// 6-DOF trackers plug in behind the same interface.
+#include <opencv2/core.hpp>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "engine/config/TrackerParams.hpp"
+#include "engine/geometry/RigidPose.hpp"
+
+namespace reftrack::app {
+
+struct StageTime {
+  std::string name;
+  double milliseconds = 0.0;
+};
+
+// 2-D debug primitives in frame pixels (pixel centres at integers).
+struct TrackingDebug {
+  std::vector<cv::Point2f> corners;
+  std::vector<std::pair<cv::Point2f, cv::Point2f>> matches;  // from (reference side) -> to
+  std::vector<cv::Vec3d> epipolarLines;                      // a x + b y + c = 0
+};
+
+struct TrackingResult {
+  std::optional<RigidPose> worldToCamera;  // set when a 6-DOF pose is known for the frame
+  std::optional<cv::Matx33d> H;            // frame -> reference homography, homography mode
+  std::string status = "initialising";     // "tracking", "lost" or "initialising"
+  std::vector<StageTime> stages;           // per-stage milliseconds, in order
+  int matches = 0;
+  int inliers = 0;
+  TrackingDebug debug;
+};
+
+class FrameTracker {
+ public:
+  virtual ~FrameTracker() = default;
+  virtual TrackingResult process(const cv::Mat& frame, int index, double timestamp) = 0;
+  // Takes effect from the next process() call; throws reftrack::Error for invalid parameters.
+  virtual void applyParams(const TrackerParams& params) = 0;
+  virtual std::string name() const = 0;
+};
+
+}  // namespace reftrack::app

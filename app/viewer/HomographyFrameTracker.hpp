@@ -1,0 +1,46 @@
+#pragma once
+// HomographyFrameTracker: the HomographyTracker (homography mode, paper Sec. 7.3) behind the
+// viewer's FrameTracker interface — status, per-stage milliseconds, match/inlier counts, the
+// debug layers (frame corners, inlier matches drawn from the reference position), TrackingResult
+// H (frame -> reference, as FrameTracker documents) and, given the camera, the rotation-only pose
+// R = K^-1 H K (world = the reference camera's frame, zero translation). Labels of the reference
+// frame are mapped into each registered frame (mappedLabels()).
+#include <memory>
+#include <optional>
+
+#include "app/viewer/FrameTracker.hpp"
+#include "engine/geometry/PinholeCamera.hpp"
+#include "engine/homography/AnnotationSet.hpp"
+#include "engine/homography/HomographyTracker.hpp"
+
+namespace reftrack::app {
+
+class HomographyFrameTracker : public FrameTracker {
+ public:
+  // Throws reftrack::Error as HomographyTracker does, or when the camera's image size differs
+  // from the reference's.
+  HomographyFrameTracker(const cv::Mat& reference, const TrackerParams& params,
+                         std::optional<PinholeCamera> camera = {}, AnnotationSet labels = {});
+
+  TrackingResult process(const cv::Mat& frame, int index, double timestamp) override;
+  // Rebuilds the tracker on the same reference with the new RANSAC/correlation/corner settings;
+  // the next frame is matched unguided. Throws (keeping the old tracker) on invalid params.
+  void applyParams(const TrackerParams& params) override;
+  std::string name() const override { return "homography"; }
+
+  const HomographyTrackResult& last() const { return last_; }
+  const AnnotationSet& labels() const { return labels_; }
+  // Label positions in the last processed frame (empty when it was not registered).
+  const std::vector<cv::Point2d>& mappedLabels() const { return mappedLabels_; }
+  const HomographyTracker& tracker() const { return *tracker_; }
+
+ private:
+  cv::Mat reference_;
+  std::unique_ptr<HomographyTracker> tracker_;
+  std::optional<PinholeCamera> camera_;
+  AnnotationSet labels_;
+  HomographyTrackResult last_;
+  std::vector<cv::Point2d> mappedLabels_;
+};
+
+}  // namespace reftrack::app

@@ -1,0 +1,28 @@
+#pragma once
+// ModeSwitchingTracker: the viewer's live tracker when both kinds may run — the 6-DOF tracker
+// (given a reference map) and the homography tracker (given a reference frame). The Tracking
+// panel's mode switch reaches it through applyParams(): the tracker of the selected mode takes
+// over from the next frame; selecting a mode whose input was not given is an error that names
+// the missing option.
+#include <memory>
+
+#include "app/viewer/FrameTracker.hpp"
+
+namespace reftrack::app {
+
+class ModeSwitchingTracker : public FrameTracker {
+ public:
+  // Either may be null, not both.
+  ModeSwitchingTracker(std::unique_ptr<FrameTracker> sixDof,
+                       std::unique_ptr<FrameTracker> homography, TrackingMode initial);
+  TrackingResult process(const cv::Mat& frame, int index, double timestamp) override;
+  void applyParams(const TrackerParams& params) override;
+  std::string name() const override { return active().name(); }
+
+ private:
+  FrameTracker& active() const;
+  std::unique_ptr<FrameTracker> sixDof_, homography_;
+  TrackingMode mode_;
+};
+
+}  // namespace reftrack::app

@@ -1,0 +1,53 @@
+#pragma once
+// OverlayCompositor: draws one composited frame — the video frame, then the virtual object (the
+// wireframe cube or an OBJ model) for camera K and the tracked world->camera pose, then the 2-D
+// debug layers (corners, matches, epipolar lines) and a status label — into the current render
+// target. Used by the viewer window, headless runs, `demo` and `track --record`. The overlay is
+// an ideal pinhole projection (lens distortion is not applied). Needs a current GL 3.3 context.
+#include <memory>
+#include <opencv2/core.hpp>
+#include <string>
+
+#include "app/viewer/FrameTracker.hpp"
+#include "app/viewer/OverlaySettings.hpp"
+#include "engine/geometry/PinholeCamera.hpp"
+#include "render/Annotations2D.hpp"
+#include "render/ObjModel.hpp"
+#include "render/RenderTarget.hpp"
+#include "render/VideoBackground.hpp"
+#include "render/Viewport.hpp"
+#include "render/WireframeCube.hpp"
+
+namespace reftrack::app {
+
+class OverlayCompositor {
+ public:
+  OverlayCompositor();
+  ~OverlayCompositor();
+  OverlayCompositor(const OverlayCompositor&) = delete;
+  OverlayCompositor& operator=(const OverlayCompositor&) = delete;
+
+  // Draws into `viewport` of the framebuffer currently bound (the frame fills the viewport, so
+  // give it the frame's aspect ratio: render::fitImage). `label` is shown top-left when
+  // settings.showLabels. Throws reftrack::Error when the frame size differs from the camera's or
+  // the model file cannot be loaded.
+  void draw(const cv::Mat& frame, const PinholeCamera& camera, const TrackingResult& result,
+            const OverlaySettings& settings, const render::Viewport& viewport,
+            const std::string& label = "");
+
+  // Composites off-screen at the frame's size and returns the BGR image (CV_8UC3).
+  cv::Mat composite(const cv::Mat& frame, const PinholeCamera& camera, const TrackingResult& result,
+                    const OverlaySettings& settings, const std::string& label = "");
+
+ private:
+  void drawObject(const render::PinholeView& view, const OverlaySettings& settings);
+
+  render::VideoBackground background_;
+  render::WireframeCube cube_;
+  render::Annotations2D annotations_;
+  std::unique_ptr<render::ObjModel> model_;
+  std::string modelPath_;
+  std::unique_ptr<render::RenderTarget> target_;
+};
+
+}  // namespace reftrack::app

@@ -1,0 +1,31 @@
+#pragma once
+// OverlaySettings: what the viewer draws over the video — the wireframe cube (default) or an OBJ
+// model, its size and placement in the world (marker) frame, and the debug layers. Saved in the
+// `overlay` section of the viewer's parameter file (ViewerSettingsFile.hpp).
+#include <Eigen/Core>
+#include <opencv2/core.hpp>
+#include <string>
+
+namespace reftrack::app {
+
+struct OverlaySettings {
+  double size = 0.1;  // metres: cube edge, or the scale of one model unit
+  // The object's base centre in the world frame (the cube stands on it: its centre is size/2
+  // above, along world +z, out of the desk).
+  Eigen::Vector3d offset = Eigen::Vector3d::Zero();
+  std::string modelPath;  // OBJ file drawn instead of the cube; "" = wireframe cube
+  float lineWidthPx = 3.0f;
+  bool vertexDots = true;  // the cube's 8 vertices as dots of distinct colours
+  bool showCorners = true;
+  bool showMatches = true;
+  bool showEpipolarLines = false;
+  bool showLabels = true;  // frame index, status and tracker name
+
+  // The cube's model->world transform (centre at offset + size/2 along +z).
+  Eigen::Matrix4d cubeModelToWorld() const;
+  void check() const;                     // throws reftrack::Error naming the bad field
+  void write(cv::FileStorage& fs) const;  // key/value pairs into the currently open map
+  void read(const cv::FileNode& node);    // missing keys keep their value; then check()
+};
+
+}  // namespace reftrack::app

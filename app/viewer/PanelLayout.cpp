@@ -1,0 +1,41 @@
+#include "app/viewer/PanelLayout.hpp"
+
+#include "engine/core/Error.hpp"
+
+namespace reftrack::app {
+
+namespace {
+constexpr float kColumnWidth = 330.0f;
+constexpr float kSourceHeight = 170.0f;
+constexpr float kRecordHeight = 120.0f;
+constexpr float kOverlayHeight = 300.0f;
+constexpr int kMinimumVideoWidth = 160;
+constexpr int kMinimumHeight = kSourceHeight + kRecordHeight + 200;
+}  // namespace
+
+PanelLayout panelLayout(cv::Size canvas) {
+  if (canvas.width < 2 * kColumnWidth + kMinimumVideoWidth || canvas.height < kMinimumHeight)
+    throw Error("viewer canvas " + std::to_string(canvas.width) + "x" +
+                std::to_string(canvas.height) + " is too small for the panels (at least " +
+                std::to_string(static_cast<int>(2 * kColumnWidth) + kMinimumVideoWidth) + "x" +
+                std::to_string(kMinimumHeight) + ")");
+  const float w = static_cast<float>(canvas.width), h = static_cast<float>(canvas.height);
+  PanelLayout l;
+  l.source = {0, 0, kColumnWidth, kSourceHeight};
+  l.tracking = {0, kSourceHeight, kColumnWidth, h - kSourceHeight - kRecordHeight};
+  l.record = {0, h - kRecordHeight, kColumnWidth, kRecordHeight};
+  l.overlay = {w - kColumnWidth, 0, kColumnWidth, kOverlayHeight};
+  l.stats = {w - kColumnWidth, kOverlayHeight, kColumnWidth, h - kOverlayHeight};
+  const int column = static_cast<int>(kColumnWidth);
+  l.videoArea = {column, 0, canvas.width - 2 * column, canvas.height};
+  return l;
+}
+
+render::Viewport videoViewport(cv::Size imageSize, const cv::Rect& area, cv::Size canvas) {
+  render::Viewport v = render::fitImage(imageSize, area.size());
+  v.x += area.x;
+  v.y += canvas.height - (area.y + area.height);  // GL rows count from the bottom
+  return v;
+}
+
+}  // namespace reftrack::app

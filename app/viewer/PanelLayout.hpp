@@ -1,0 +1,23 @@
+#pragma once
+// PanelLayout: where the ImGui panels and the video go on a canvas (window or headless
+// framebuffer): Source, Tracking and Record panels in a left column, Overlay and Stats in a right
+// column, the video letterboxed in between. Rectangles are in ImGui coordinates (origin top-left).
+#include <opencv2/core.hpp>
+
+#include "render/Viewport.hpp"
+
+namespace reftrack::app {
+
+struct PanelLayout {
+  cv::Rect2f source, tracking, record, overlay, stats;
+  cv::Rect videoArea;  // top-left origin
+};
+
+// Throws reftrack::Error when the canvas is too small to hold both columns and some video.
+PanelLayout panelLayout(cv::Size canvas);
+
+// The GL viewport (bottom-left origin) showing an image of `imageSize` letterboxed in `area` of
+// a canvas of `canvas` pixels.
+render::Viewport videoViewport(cv::Size imageSize, const cv::Rect& area, cv::Size canvas);
+
+}  // namespace reftrack::app

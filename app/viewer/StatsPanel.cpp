@@ -1,0 +1,53 @@
+#include "app/viewer/StatsPanel.hpp"
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace reftrack::app {
+
+namespace {
+
+void plotSeries(const char* label, const std::vector<float>& values) {
+  float lo = 0, hi = 0;
+  bool any = false;
+  for (float v : values)
+    if (std::isfinite(v)) {
+      lo = any ? std::min(lo, v) : v;
+      hi = any ? std::max(hi, v) : v;
+      any = true;
+    }
+  const float pad = std::max(1e-3f, 0.1f * (hi - lo));
+  char overlay[48];
+  if (any && std::isfinite(values.back()))
+    std::snprintf(overlay, sizeof overlay, "%+.3f", values.back());
+  else
+    std::snprintf(overlay, sizeof overlay, "-");
+  ImGui::PlotLines(label, values.data(), static_cast<int>(values.size()), 0, overlay, lo - pad,
+                   hi + pad, ImVec2(0, 36));
+}
+
+}  // namespace
+
+void drawStatsPanel(const StatsHistory& stats, const cv::Rect2f& placement) {
+  ImGui::SetNextWindowPos({placement.x, placement.y}, ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize({placement.width, placement.height}, ImGuiCond_FirstUseEver);
+  ImGui::Begin("Stats");
+  ImGui::Text("%.1f fps over %zu frames", stats.meanFps(), stats.frames().size());
+  if (!stats.frames().empty()) {
+    const FrameStats& last = stats.frames().back();
+    ImGui::Text("frame %d: %s, %d matches, %d inliers", last.index, last.status.c_str(),
+                last.matches, last.inliers);
+    for (const StageTime& s : last.stages)
+      ImGui::Text("  %-14s %7.2f ms", s.name.c_str(), s.milliseconds);
+  }
+  ImGui::PushItemWidth(-40);
+  static const char* kNames[6] = {"tx", "ty", "tz", "rx", "ry", "rz"};
+  for (int c = 0; c < 6; ++c) plotSeries(kNames[c], stats.poseSeries(c));
+  plotSeries("inl", stats.inlierSeries());
+  ImGui::PopItemWidth();
+  ImGui::End();
+}
+
+}  // namespace reftrack::app

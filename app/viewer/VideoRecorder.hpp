@@ -1,0 +1,46 @@
+#pragma once
+// VideoRecorder: writes composited frames to an MP4 (cv::VideoWriter, 'mp4v') at the source frame
+// rate, one output frame per call, and the trajectory used beside it as TUM
+// (`<stem>_trajectory.txt`, tracked frames only). Both are written under temporary names and
+// renamed by close(), so an error or an abandoned recording (destroyed without close()) leaves
+// no half-written file at the target paths.
+#include <filesystem>
+#include <opencv2/core.hpp>
+#include <opencv2/videoio.hpp>
+#include <optional>
+
+#include "engine/geometry/TumTrajectory.hpp"
+
+namespace reftrack::app {
+
+class VideoRecorder {
+ public:
+  // Throws reftrack::Error naming the path when it does not end in .mp4, its folder does not
+  // exist, fps <= 0 or the writer cannot be opened.
+  VideoRecorder(const std::filesystem::path& mp4, double fps, cv::Size frameSize);
+  ~VideoRecorder();
+  VideoRecorder(const VideoRecorder&) = delete;
+  VideoRecorder& operator=(const VideoRecorder&) = delete;
+
+  // Appends one BGR frame of the size given at construction (throws reftrack::Error otherwise)
+  // and, when known, the world->camera pose used for it.
+  void write(const cv::Mat& bgr, double timestamp, const std::optional<RigidPose>& worldToCamera);
+  // Finishes the MP4 and the trajectory and moves both to their final names.
+  void close();
+
+  int framesWritten() const { return frames_; }
+  const std::filesystem::path& videoPath() const { return mp4_; }
+  const std::filesystem::path& trajectoryPath() const { return trajectory_; }
+  // `<folder>/<stem>_trajectory.txt` for `<folder>/<stem>.mp4`.
+  static std::filesystem::path trajectoryPathFor(const std::filesystem::path& mp4);
+
+ private:
+  std::filesystem::path mp4_, trajectory_, partial_;
+  cv::Size size_;
+  cv::VideoWriter writer_;
+  TumTrajectory poses_;
+  int frames_ = 0;
+  bool closed_ = false;
+};
+
+}  // namespace reftrack::app

@@ -1,0 +1,534 @@
+#include "app/viewer/ViewerApp.hpp"
+
+// clang-format off
+#include <glad/gl.h>  // before GLFW, which must not pull in a system GL header
+#include <GLFW/glfw3.h>
+// clang-format on
+#include <imgui.h>
+#include <imgui_impl_glfw.h>
+#include <imgui_impl_opengl3.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "app/cli/ProgressBar.hpp"
+#include "app/sources/FrameGrabber.hpp"
+#include "app/sources/SimulatorSource.hpp"
+#include "app/viewer/OverlayCompositor.hpp"
+#include "app/viewer/OverlayPanel.hpp"
+#include "app/viewer/PanelLayout.hpp"
+#include "app/viewer/RecordPanel.hpp"
+#include "app/viewer/SourcePanel.hpp"
+#include "app/viewer/StatsPanel.hpp"
+#include "app/viewer/TrackingPanel.hpp"
+#include "app/viewer/TrajectoryReplayTracker.hpp"
+#include "app/viewer/VideoRecorder.hpp"
+#include "app/viewer/ViewerState.hpp"
+#include "engine/core/AtomicFile.hpp"
+#include "engine/core/Error.hpp"
+#include "render/RenderTarget.hpp"
+#include "render/context/GlfwWindowContext.hpp"
+
+namespace reftrack::app {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+void ViewerOptions::check() const {
+  if (input.empty()) throw Error("--input is required");
+  if (maxFrames == 0 || maxFrames < -1) throw Error("--frames must be positive");
+  if (cubeSize && !(std::isfinite(*cubeSize) && *cubeSize > 0))
+    throw Error("--overlay-cube must be a positive size in metres");
+  if (!model.empty() && !fs::is_regular_file(model))
+    throw Error("model file '" + model.string() + "' does not exist");
+  if (!camera.empty() && !fs::is_regular_file(camera))
+    throw Error("camera file '" + camera.string() + "' does not exist");
+  if (!poses.empty() && !fs::is_regular_file(poses))
+    throw Error("trajectory file '" + poses.string() + "' does not exist");
+  if (!screenshot.empty() && screenshot.extension() != ".png")
+    throw Error("screenshot '" + screenshot.string() + "': the file name must end in .png");
+  if (ui && !headless) throw Error("--ui applies to --headless runs (the window always has it)");
+}
+
+bool windowSystemAvailable() {
+  for (const char* name : {"DISPLAY", "WAYLAND_DISPLAY"}) {
+    const char* value = std::getenv(name);
+    if (value && *value) return true;
+  }
+  return false;
+}
+
+namespace {
+
+// ---- Setup: source, camera, tracker -------------------------------------------------------
+
+struct Session {
+  std::unique_ptr<FrameGrabber> grabber;
+  PinholeCamera camera;
+  std::unique_ptr<FrameTracker> tracker;  // null: no poses (video only)
+  Frame first;
+};
+
+Session openSession(const ViewerOptions& options, ViewerState& state) {
+  Session s;
+  state.settings = options.params.empty() ? ViewerSettings{} : ViewerSettings::load(options.params);
+  if (options.cubeSize) state.settings.overlay.size = *options.cubeSize;
+  if (!options.model.empty()) state.settings.overlay.modelPath = options.model.string();
+  state.settings.check();
+  if (!options.params.empty()) state.paramsPath = options.params.string();
+
+  std::unique_ptr<FrameSource> source = openFrameSource(options.input, options.source);
+  const auto* sim = dynamic_cast<const SimulatorSource*>(source.get());
+  std::string cameraName;
+  if (!options.camera.empty()) {
+    s.camera = PinholeCamera::load(options.camera);
+    cameraName = "camera file '" + options.camera.string() + "'";
+  } else if (sim) {
+    s.camera = sim->camera();
+    cameraName = "the simulator's camera";
+  } else {
+    throw Error("input '" + options.input +
+                "' needs --camera camera.yml: the overlay needs the intrinsics K (only sim: "
+                "inputs bring their own camera)");
+  }
+  if (!options.poses.empty())
+    s.tracker = std::make_unique<TrajectoryReplayTracker>(
+        TrajectoryReplayTracker::load(options.poses, source->fps()));
+  else if (options.makeTracker)
+    s.tracker = options.makeTracker(s.camera, state.settings.tracker);
+  else if (sim)
+    s.tracker = std::make_unique<TrajectoryReplayTracker>(sim->groundTruth(), source->fps());
+  if (s.tracker) s.tracker->applyParams(state.settings.tracker);
+  state.trackerName = s.tracker ? s.tracker->name() : "none (no --poses)";
+
+  state.source.description = source->description();
+  state.source.frameCount = source->frameCount();
+  state.source.fps = source->fps();
+  state.source.seekable = source->seekable();
+  state.source.live = source->isLive();
+  s.grabber = std::make_unique<FrameGrabber>(std::move(source));
+
+  std::optional<Frame> first = s.grabber->next();
+  if (!first) throw Error("input '" + options.input + "' holds no frame");
+  if (first->image.size() != s.camera.imageSize())
+    throw Error(cameraName + " is for " + std::to_string(s.camera.imageSize().width) + "x" +
+                std::to_string(s.camera.imageSize().height) + " frames but input '" +
+                options.input + "' delivers " + std::to_string(first->image.cols) + "x" +
+                std::to_string(first->image.rows) + " frames");
+  s.first = std::move(*first);
+  return s;
+}
+
+// ---- Per-frame work shared by the window and headless loops ------------------------------
+
+struct FrameLoop {
+  Session& session;
+  ViewerState& state;
+  OverlayCompositor compositor;
+  std::unique_ptr<VideoRecorder> recorder;
+  Frame current;
+  TrackingResult result;
+  Clock::time_point lastProcessed{};
+  int processed = 0;
+
+  FrameLoop(Session& s, ViewerState& st) : session(s), state(st) {}
+
+  void applyTrackerParams() {
+    if (!state.trackerParamsChanged) return;
+    state.trackerParamsChanged = false;
+    try {
+      state.settings.tracker.check();
+      if (session.tracker) session.tracker->applyParams(state.settings.tracker);
+      state.paramsMessage.clear();
+    } catch (const Error& e) {
+      state.paramsMessage = e.what();
+    }
+  }
+
+  std::string label() const {
+    return "frame " + std::to_string(current.index) + "  " + result.status + "  (" +
+           state.trackerName + ")";
+  }
+
+  // Tracks `frame` and makes it the current one.
+  void process(Frame frame) {
+    current = std::move(frame);
+    if (current.image.size() != session.camera.imageSize())
+      throw Error("frame " + std::to_string(current.index) + " is " +
+                  std::to_string(current.image.cols) + "x" + std::to_string(current.image.rows) +
+                  " but the camera is calibrated for " +
+                  std::to_string(session.camera.imageSize().width) + "x" +
+                  std::to_string(session.camera.imageSize().height));
+    if (session.tracker) {
+      result = session.tracker->process(current.image, current.index, current.timestamp);
+    } else {
+      result = TrackingResult{};
+      result.status = "no poses";
+    }
+    const Clock::time_point now = Clock::now();
+    FrameStats stats;
+    stats.index = current.index;
+    if (processed > 0)
+      stats.loopMilliseconds =
+          std::chrono::duration<double, std::milli>(now - lastProcessed).count();
+    lastProcessed = now;
+    stats.stages = result.stages;
+    stats.matches = result.matches;
+    stats.inliers = result.inliers;
+    stats.status = result.status;
+    if (result.worldToCamera) stats.pose = result.worldToCamera->toVector6();
+    state.stats.add(std::move(stats));
+    state.lastStatus = result.status;
+    state.source.currentIndex = current.index;
+    state.source.droppedFrames = session.grabber->droppedFrames();
+    ++processed;
+  }
+
+  // The next frame in order, honouring loop; false at the end.
+  bool advance() {
+    std::optional<Frame> frame = session.grabber->next();
+    if (!frame && state.source.loop && state.source.seekable) {
+      session.grabber->seek(0);
+      frame = session.grabber->next();
+    }
+    if (!frame) {
+      state.source.ended = true;
+      return false;
+    }
+    state.source.ended = false;
+    process(std::move(*frame));
+    return true;
+  }
+
+  void startRecording(const fs::path& path, cv::Size size) {
+    recorder = std::make_unique<VideoRecorder>(path, state.source.fps, size);
+    state.record.recording = true;
+    state.record.framesWritten = 0;
+    state.record.message = "recording to " + path.string();
+  }
+
+  void record(const cv::Mat& bgr) {
+    if (!recorder) return;
+    recorder->write(bgr, current.timestamp, result.worldToCamera);
+    state.record.framesWritten = recorder->framesWritten();
+  }
+
+  // Closes the recording; returns the paths written.
+  std::pair<fs::path, fs::path> stopRecording() {
+    if (!recorder) return {};
+    std::unique_ptr<VideoRecorder> r = std::move(recorder);
+    state.record.recording = false;
+    r->close();
+    state.record.message =
+        "saved " + std::to_string(r->framesWritten()) + " frames to " + r->videoPath().string();
+    return {r->videoPath(), r->trajectoryPath()};
+  }
+};
+
+// ---- ImGui --------------------------------------------------------------------------------
+
+// One ImGui context with the OpenGL 3 renderer, plus the GLFW platform backend in a window.
+class ImGuiSession {
+ public:
+  explicit ImGuiSession(GLFWwindow* window) : window_(window) {
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGui::GetIO().IniFilename = nullptr;  // fixed layout: no imgui.ini written or read
+    ImGui::StyleColorsDark();
+    if (window_ && !ImGui_ImplGlfw_InitForOpenGL(window_, true))
+      throw Error("ImGui: the GLFW backend failed to initialise");
+    if (!ImGui_ImplOpenGL3_Init("#version 330 core"))
+      throw Error("ImGui: the OpenGL 3 backend failed to initialise");
+  }
+  ~ImGuiSession() {
+    ImGui_ImplOpenGL3_Shutdown();
+    if (window_) ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+  }
+  ImGuiSession(const ImGuiSession&) = delete;
+  ImGuiSession& operator=(const ImGuiSession&) = delete;
+
+  // Starts a frame; headless, the display size and time step are set here (no platform backend).
+  void newFrame(cv::Size headlessDisplay = {}, double headlessDeltaSeconds = 1.0 / 30) {
+    ImGui_ImplOpenGL3_NewFrame();
+    if (window_) {
+      ImGui_ImplGlfw_NewFrame();
+    } else {
+      ImGuiIO& io = ImGui::GetIO();
+      io.DisplaySize = ImVec2(static_cast<float>(headlessDisplay.width),
+                              static_cast<float>(headlessDisplay.height));
+      io.DeltaTime = static_cast<float>(headlessDeltaSeconds);
+    }
+    ImGui::NewFrame();
+  }
+  void render() {
+    ImGui::Render();
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+  }
+
+ private:
+  GLFWwindow* window_;
+};
+
+void drawPanels(ViewerState& state, const PanelLayout& layout) {
+  drawSourcePanel(state.source, layout.source);
+  drawTrackingPanel(state, layout.tracking);
+  drawRecordPanel(state.record, layout.record);
+  drawOverlayPanel(state.settings.overlay, state.overlayEdit, layout.overlay);
+  drawStatsPanel(state.stats, layout.stats);
+}
+
+void writeScreenshot(const fs::path& file, const cv::Mat& bgr) {
+  writeFileAtomically(file, [&](const fs::path& tmp) {
+    // The temporary name keeps the extension so imwrite picks PNG.
+    if (!cv::imwrite(tmp.string() + ".png", bgr))
+      throw Error("screenshot '" + file.string() + "' cannot be written");
+    fs::rename(tmp.string() + ".png", tmp);
+  });
+}
+
+// The window's back buffer as BGR (row 0 at the top).
+cv::Mat readWindowBgr(cv::Size size) {
+  cv::Mat rgba(size, CV_8UC4);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glReadBuffer(GL_BACK);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, size.width, size.height, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data);
+  cv::Mat bgr;
+  cv::cvtColor(rgba, bgr, cv::COLOR_RGBA2BGR);
+  cv::flip(bgr, bgr, 0);
+  return bgr;
+}
+
+// ---- Headless: the same loop into an off-screen canvas --------------------------------------
+
+ViewerRunSummary runHeadless(const ViewerOptions& options, render::GlContext& context) {
+  const Clock::time_point start = Clock::now();
+  ViewerState state;
+  Session session = openSession(options, state);
+  FrameLoop loop(session, state);
+  const cv::Size frameSize = session.first.image.size();
+  const cv::Size canvasSize = options.ui ? options.canvasSize : frameSize;
+  const std::optional<PanelLayout> layout =
+      options.ui ? std::optional<PanelLayout>(panelLayout(canvasSize)) : std::nullopt;
+  const render::Viewport viewport = layout
+                                        ? videoViewport(frameSize, layout->videoArea, canvasSize)
+                                        : render::Viewport{0, 0, frameSize.width, frameSize.height};
+  render::RenderTarget canvas(canvasSize);
+  std::unique_ptr<ImGuiSession> imgui =
+      options.ui ? std::make_unique<ImGuiSession>(nullptr) : nullptr;
+  if (!options.record.empty()) loop.startRecording(options.record, canvasSize);
+
+  std::optional<int> total = state.source.frameCount;
+  if (options.maxFrames > 0)
+    total = total ? std::min(*total, options.maxFrames) : options.maxFrames;
+  std::unique_ptr<ProgressBar> progress =
+      total ? std::make_unique<ProgressBar>("view", static_cast<std::size_t>(*total)) : nullptr;
+
+  ViewerRunSummary summary;
+  cv::Mat lastCanvas;
+  loop.process(std::move(session.first));
+  for (;;) {
+    canvas.bind();
+    glClearColor(0.1f, 0.1f, 0.1f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    loop.compositor.draw(loop.current.image, session.camera, loop.result, state.settings.overlay,
+                         viewport, loop.label());
+    if (imgui) {
+      // ImGui lays windows out over two frames; the first frame is built twice so even a
+      // one-frame run shows them settled.
+      for (int pass = 0; pass < (loop.processed == 1 ? 2 : 1); ++pass) {
+        imgui->newFrame(canvasSize, 1.0 / state.source.fps);
+        drawPanels(state, *layout);
+        if (pass == 0 && loop.processed == 1) ImGui::EndFrame();
+      }
+      canvas.bind();
+      imgui->render();
+    }
+    lastCanvas = canvas.readColourBgr();
+    loop.record(lastCanvas);
+    if (progress) progress->advance();
+    if (options.maxFrames > 0 && loop.processed >= options.maxFrames) break;
+    if (!loop.advance()) break;
+  }
+  if (progress) progress->finish();
+  std::tie(summary.recording, summary.trajectory) = loop.stopRecording();
+  if (!options.screenshot.empty()) {
+    writeScreenshot(options.screenshot, lastCanvas);
+    summary.screenshot = options.screenshot;
+  }
+  summary.framesProcessed = loop.processed;
+  summary.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  summary.sourceFps = state.source.fps;
+  summary.backend = context.backendName();
+  return summary;
+}
+
+// ---- Window: GLFW + ImGui, read top to bottom like ImGui's example_glfw_opengl3 -------------
+
+ViewerRunSummary runWindow(const ViewerOptions& options, render::GlfwWindowContext& window) {
+  const Clock::time_point start = Clock::now();
+  ViewerState state;
+  Session session = openSession(options, state);
+  FrameLoop loop(session, state);
+  ImGuiSession imgui(window.window());
+  const cv::Size frameSize = session.first.image.size();
+  if (!options.record.empty()) loop.startRecording(options.record, frameSize);
+  if (!options.record.empty()) state.record.path = options.record.string();
+  glfwShowWindow(window.window());
+
+  ViewerRunSummary summary;
+  loop.process(std::move(session.first));
+  bool newFrame = true;  // the current frame still has to be recorded
+  Clock::time_point due = Clock::now();
+  bool finishing = false;
+  while (true) {
+    window.pollEvents();
+    if (window.shouldClose()) finishing = true;
+
+    // Carry out the panels' requests.
+    loop.applyTrackerParams();
+    if (state.record.startRequested) {
+      state.record.startRequested = false;
+      try {
+        loop.startRecording(state.record.path, frameSize);
+      } catch (const Error& e) {
+        state.record.message = e.what();
+      }
+    }
+    if (state.record.stopRequested) {
+      state.record.stopRequested = false;
+      try {
+        loop.stopRecording();
+      } catch (const Error& e) {
+        state.record.message = e.what();
+      }
+    }
+    if (state.source.seekRequest) {
+      const int target = *state.source.seekRequest;
+      state.source.seekRequest.reset();
+      session.grabber->seek(target);
+      newFrame = loop.advance() || newFrame;
+    }
+
+    // Advance at the source rate times the speed (or one step when paused).
+    const bool limitReached = options.maxFrames > 0 && loop.processed >= options.maxFrames;
+    // With --frames the window closes by itself (also when the source ends first).
+    if ((limitReached || (options.maxFrames > 0 && state.source.ended)) && !newFrame)
+      finishing = true;
+    const bool wantFrame =
+        !limitReached && !state.source.ended && !newFrame &&
+        ((state.source.playing && Clock::now() >= due) || state.source.stepRequested);
+    if (wantFrame) {
+      state.source.stepRequested = false;
+      if (loop.advance()) {
+        newFrame = true;
+        due = Clock::now() +
+              std::chrono::duration_cast<Clock::duration>(
+                  std::chrono::duration<double>(1.0 / (state.source.fps * state.source.speed)));
+      } else if (loop.recorder) {
+        loop.stopRecording();  // the end of the source finishes the recording
+      }
+    }
+    if (newFrame && loop.recorder) {
+      try {
+        loop.record(loop.compositor.composite(loop.current.image, session.camera, loop.result,
+                                              state.settings.overlay, loop.label()));
+      } catch (const Error& e) {
+        if (state.settings.overlay.modelPath.empty()) throw;
+        state.overlayEdit.message = e.what();  // a bad model path typed in the panel
+        state.settings.overlay.modelPath.clear();
+      }
+    }
+    newFrame = false;
+
+    // The UI.
+    imgui.newFrame();
+    int winW = 0, winH = 0;
+    glfwGetWindowSize(window.window(), &winW, &winH);
+    const cv::Size windowSize(std::max(winW, 1), std::max(winH, 1));
+    const cv::Size fb = window.framebufferSize();
+    std::optional<PanelLayout> layout;
+    try {
+      layout = panelLayout(windowSize);
+    } catch (const Error&) {
+      layout.reset();  // window too small for the columns: video only
+    }
+    if (layout) drawPanels(state, *layout);
+
+    // Draw: video + overlay letterboxed between the panel columns, then the UI on top.
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glViewport(0, 0, fb.width, fb.height);
+    glClearColor(0.1f, 0.1f, 0.1f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    const double sx = static_cast<double>(fb.width) / windowSize.width;
+    const double sy = static_cast<double>(fb.height) / windowSize.height;
+    const cv::Rect area =
+        layout ? cv::Rect(cvRound(layout->videoArea.x * sx), cvRound(layout->videoArea.y * sy),
+                          cvRound(layout->videoArea.width * sx),
+                          cvRound(layout->videoArea.height * sy))
+               : cv::Rect(0, 0, fb.width, fb.height);
+    try {
+      loop.compositor.draw(loop.current.image, session.camera, loop.result, state.settings.overlay,
+                           videoViewport(frameSize, area, fb), loop.label());
+    } catch (const Error& e) {
+      if (state.settings.overlay.modelPath.empty()) throw;
+      state.overlayEdit.message = e.what();
+      state.settings.overlay.modelPath.clear();
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    imgui.render();
+
+    if (finishing) {
+      if (!options.screenshot.empty()) {
+        writeScreenshot(options.screenshot, readWindowBgr(fb));
+        summary.screenshot = options.screenshot;
+      }
+      break;
+    }
+    window.swapBuffers();
+  }
+  std::tie(summary.recording, summary.trajectory) = loop.stopRecording();
+  if (summary.recording.empty() && !options.record.empty() && fs::exists(options.record)) {
+    summary.recording = options.record;  // finished at the end of the source
+    summary.trajectory = VideoRecorder::trajectoryPathFor(options.record);
+  }
+  summary.framesProcessed = loop.processed;
+  summary.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  summary.sourceFps = state.source.fps;
+  summary.backend = window.backendName();
+  return summary;
+}
+
+}  // namespace
+
+ViewerRunSummary runViewer(const ViewerOptions& options, render::GlContext* context) {
+  options.check();
+  if (options.headless) {
+    std::unique_ptr<render::GlContext> owned;
+    if (!context) {
+      owned = render::createHeadlessContext();
+      context = owned.get();
+    }
+    context->makeCurrent();
+    return runHeadless(options, *context);
+  }
+  std::unique_ptr<render::GlfwWindowContext> owned;
+  auto* window = dynamic_cast<render::GlfwWindowContext*>(context);
+  if (context && !window) throw Error("the viewer window needs a GLFW window context");
+  if (!window) {
+    render::WindowOptions windowOptions;
+    windowOptions.title = "reftrack view: " + options.input;
+    windowOptions.size = options.canvasSize;
+    windowOptions.visible = false;  // shown once the source is open
+    owned = std::make_unique<render::GlfwWindowContext>(windowOptions);
+    window = owned.get();
+  }
+  window->makeCurrent();
+  return runWindow(options, *window);
+}
+
+}  // namespace reftrack::app

@@ -1,0 +1,57 @@
+#pragma once
+// runViewer: the AR viewer loop behind `reftrack view` and `reftrack demo`. Each iteration takes
+// the next frame from the source (on the grabber thread, or rendered here for sim:), runs the
+// tracker, records the composited frame when recording, and draws video + overlay (+ the ImGui
+// panels) — into a GLFW window, or headless into an off-screen framebuffer (OSMesa/EGL).
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "app/sources/FrameSourceFactory.hpp"
+#include "app/viewer/FrameTracker.hpp"
+#include "engine/geometry/PinholeCamera.hpp"
+#include "render/context/GlContext.hpp"
+
+namespace reftrack::app {
+
+struct ViewerOptions {
+  std::string input;                 // see openFrameSource
+  std::filesystem::path camera;      // camera.yml; optional for sim: inputs
+  std::filesystem::path poses;       // TUM trajectory replayed as the poses (optional)
+  std::filesystem::path params;      // ViewerSettings / TrackerParams YAML (optional)
+  std::filesystem::path model;       // OBJ drawn instead of the cube (optional)
+  std::optional<double> cubeSize;    // overrides the parameter file's overlay size
+  std::filesystem::path record;      // MP4 to record from the first frame (optional)
+  std::filesystem::path screenshot;  // PNG of the last drawn canvas (optional)
+  bool headless = false;
+  bool ui = false;     // headless: draw the ImGui panels too (the window always has them)
+  int maxFrames = -1;  // stop after this many processed frames; -1: the whole source (headless)
+                       // or until the window is closed
+  cv::Size canvasSize{1280, 720};  // window size, and the headless canvas with --ui
+  FrameSourceOptions source;
+  // Builds the live tracker (homography / 6-DOF) for the camera; used when --poses is not given.
+  // Unset: sim: inputs replay their ground truth, other inputs show the video only.
+  std::function<std::unique_ptr<FrameTracker>(const PinholeCamera&, const TrackerParams&)>
+      makeTracker;
+  void check() const;  // throws reftrack::Error naming the bad option
+};
+
+struct ViewerRunSummary {
+  int framesProcessed = 0;
+  double seconds = 0.0;
+  double sourceFps = 0.0;
+  std::string backend;  // "glfw-window", "osmesa", "egl-surfaceless"
+  std::filesystem::path recording, trajectory, screenshot;  // empty when not written
+};
+
+// Runs the viewer. `context`: an existing current context to use (a GlfwWindowContext for the
+// window path; any context headless); nullptr creates one. Throws reftrack::Error for bad input
+// (missing files, camera size mismatch, unreadable frames); outputs are then left unwritten.
+ViewerRunSummary runViewer(const ViewerOptions& options, render::GlContext* context = nullptr);
+
+// True when DISPLAY or WAYLAND_DISPLAY is set (a window may be opened).
+bool windowSystemAvailable();
+
+}  // namespace reftrack::app

@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# Speed and accuracy benchmarks (single thread), each against its baseline measured in the same
+# run: homography mode vs ORB + findHomography, 6-DOF vs ORB + solvePnPRansac + KalmanFilter.
+# Usage: bench.sh [frames]   (default 300 frames per 6-DOF sequence)
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build="${REFTRACK_BUILD_DIR:-$root/build}"
+frames="${1:-300}"
+bash "$root/scripts/setup.sh"
+bash "$root/scripts/build.sh" Release
+out="$root/out/bench"
+mkdir -p "$out"
+"$build/app/reftrack" bench-homography
+for size in 320x240 640x480; do
+  "$build/app/reftrack" experiment-6dof --preset handheld --frames "$frames" --size "$size" \
+    --out "$out/6dof-handheld-$size"
+done
+"$build/app/reftrack" experiment-6dof --preset static --frames "$frames" --no-baseline \
+  --out "$out/6dof-static"

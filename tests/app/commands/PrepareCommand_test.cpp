@@ -1,0 +1,259 @@
+// `reftrack prepare` against the simulator's exact poses and scene: marker poses, number and
+// accuracy of the triangulated points, and one clear error per kind of bad input.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <sstream>
+
+#include "TestPaths.hpp"
+#include "app/simulator/SceneSimulator.hpp"
+#include "app/simulator/SimulationWriter.hpp"
+#include "engine/geometry/PinholeCamera.hpp"
+#include "engine/reference/ReferenceMap.hpp"
+#include "engine/reference/ReferencePreparer.hpp"
+#include "render/context/GlContext.hpp"
+
+using namespace reftrack;
+using namespace reftrack::app;
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+struct CommandRun {
+  int exitCode;
+  std::string out, err;
+};
+
+std::string readText(const fs::path& file) {
+  std::ifstream in(file);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+CommandRun runReftrack(const std::string& args, const fs::path& scratch) {
+  const fs::path outFile = scratch / "stdout.txt", errFile = scratch / "stderr.txt";
+  const std::string cmd = test::reftrackBinary().string() + " " + args + " >" + outFile.string() +
+                          " 2>" + errFile.string();
+  const int status = std::system(cmd.c_str());
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, readText(outFile), readText(errFile)};
+}
+
+// Bilinear sample of a CV_32F image at a sub-pixel position (pixel centres at integers).
+double bilinear(const cv::Mat& img, cv::Point2f p) {
+  const int x0 = static_cast<int>(std::floor(p.x)), y0 = static_cast<int>(std::floor(p.y));
+  const double fx = p.x - x0, fy = p.y - y0;
+  const auto at = [&](int x, int y) {
+    return static_cast<double>(
+        img.at<float>(std::clamp(y, 0, img.rows - 1), std::clamp(x, 0, img.cols - 1)));
+  };
+  return (1 - fy) * ((1 - fx) * at(x0, y0) + fx * at(x0 + 1, y0)) +
+         fy * ((1 - fx) * at(x0, y0 + 1) + fx * at(x0 + 1, y0 + 1));
+}
+
+// One 640x480 simulation (reference views at about 1 m from the content) for the whole suite,
+// written to disk as `reftrack simulate` does, with the true depth map of reference A.
+class PrepareCommandTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new fs::path(test::freshTempDir("PrepareCommand_sim"));
+    const auto context = render::createHeadlessContext();
+    SimulationOptions o;
+    o.frames = 1;
+    SceneSimulator sim(o);
+    writeSimulation(sim, *dir_);
+    depthA_ = new cv::Mat(sim.renderDepth(sim.referencePoseA()));
+    truthA_ = new RigidPose(sim.referencePoseA());
+    truthB_ = new RigidPose(sim.referencePoseB());
+    marker_ = new MarkerSpec(sim.marker());
+  }
+  static void TearDownTestSuite() {
+    delete dir_;
+    delete depthA_;
+    delete truthA_;
+    delete truthB_;
+    delete marker_;
+  }
+  static std::string commonArgs(const fs::path& out) {
+    return "prepare --camera " + (*dir_ / "camera.yml").string() + " --ref-a " +
+           (*dir_ / "reference_a.png").string() + " --ref-b " +
+           (*dir_ / "reference_b.png").string() + " --out " + out.string();
+  }
+  // A copy of a reference image with the marker (and its white border) painted over.
+  static fs::path withoutMarker(const fs::path& image, const RigidPose& pose, const fs::path& out) {
+    cv::Mat img = cv::imread(image.string(), cv::IMREAD_COLOR);
+    const PinholeCamera camera = PinholeCamera::load(*dir_ / "camera.yml");
+    std::vector<cv::Point> polygon;
+    for (const Eigen::Vector3d& c : marker_->cornersWorld()) {
+      const Eigen::Vector2d p = camera.project(pose, 1.6 * c);  // 1.6x covers the white border
+      polygon.emplace_back(static_cast<int>(p.x()), static_cast<int>(p.y()));
+    }
+    cv::fillConvexPoly(img, polygon, cv::Scalar(90, 110, 100));
+    cv::imwrite(out.string(), img);
+    return out;
+  }
+  static fs::path* dir_;
+  static cv::Mat* depthA_;
+  static RigidPose *truthA_, *truthB_;
+  static MarkerSpec* marker_;
+};
+fs::path* PrepareCommandTest::dir_ = nullptr;
+cv::Mat* PrepareCommandTest::depthA_ = nullptr;
+RigidPose* PrepareCommandTest::truthA_ = nullptr;
+RigidPose* PrepareCommandTest::truthB_ = nullptr;
+MarkerSpec* PrepareCommandTest::marker_ = nullptr;
+
+}  // namespace
+
+TEST_F(PrepareCommandTest, MarkerPosesAndTriangulatedPointsMatchTheSimulatorsGroundTruth) {
+  const fs::path out = test::freshTempDir("PrepareCommand_accuracy") / "map";
+  const CommandRun run =
+      runReftrack(commonArgs(out) + " --marker " + marker_->toString(), out.parent_path());
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  std::cout << run.out;
+  EXPECT_NE(run.out.find("marker corner reprojection RMS"), std::string::npos);
+  EXPECT_NE(run.out.find("dropped:"), std::string::npos);
+  const ReferenceMap map = ReferenceMap::load(out);
+
+  // Marker poses: 2 mm and 0.1 degree at 640x480 (the bar).
+  for (const auto& [estimate, truth, name] :
+       {std::tuple{map.T_A, *truthA_, "A"}, std::tuple{map.T_B, *truthB_, "B"}}) {
+    const double centreMm = (estimate.cameraCentre() - truth.cameraCentre()).norm() * 1000.0;
+    const double rotationDeg = RigidPose::rotationDistance(estimate, truth) * 180.0 / kPi;
+    std::cout << "T_" << name << ": camera centre error " << centreMm << " mm, rotation error "
+              << rotationDeg << " deg\n";
+    EXPECT_LT(centreMm, 2.0) << name;
+    EXPECT_LT(rotationDeg, 0.1) << name;
+  }
+
+  // At least 300 points, reprojection RMS < 0.3 px (the bar), recomputed from the map.
+  ASSERT_GE(map.matches.size(), 300u);
+  const Eigen::Matrix3d& K = map.camera.K();
+  const RigidPose T_AB = map.T_AB();
+  double reprojSq = 0.0, depthSq = 0.0;
+  std::vector<double> depthErrorsMm;
+  for (const ReferenceMatch& m : map.matches) {
+    const cv::Point2f pA = map.cornersA[static_cast<size_t>(m.cornerA)].pixel;
+    const cv::Point2f pB = map.cornersB[static_cast<size_t>(m.cornerB)].pixel;
+    const Eigen::Vector3d qA = K * m.pointA, qB = K * (T_AB * m.pointA);
+    reprojSq += (qA.head<2>() / qA.z() - Eigen::Vector2d(pA.x, pA.y)).squaredNorm();
+    reprojSq += (qB.head<2>() / qB.z() - Eigen::Vector2d(pB.x, pB.y)).squaredNorm();
+    // The true surface depth along A's ray through the corner (the simulator has no distortion).
+    const double err = (m.pointA.z() - bilinear(*depthA_, pA)) * 1000.0;
+    depthErrorsMm.push_back(std::abs(err));
+    depthSq += err * err;
+  }
+  const double n = static_cast<double>(map.matches.size());
+  const double reprojRms = std::sqrt(reprojSq / (2.0 * n));
+  const double depthRmsMm = std::sqrt(depthSq / n);
+  std::nth_element(depthErrorsMm.begin(), depthErrorsMm.begin() + depthErrorsMm.size() / 2,
+                   depthErrorsMm.end());
+  std::cout << map.matches.size() << " points, reprojection RMS " << reprojRms
+            << " px, depth RMS error " << depthRmsMm << " mm (median |error| "
+            << depthErrorsMm[depthErrorsMm.size() / 2] << " mm)\n";
+  // Against the stored corners: includes B's sub-pixel correlation-peak offsets (<= 0.5 px).
+  EXPECT_LT(reprojRms, 0.3);
+  // 3 mm at about 1 m range (the bar); corners on depth edges would show up here.
+  EXPECT_LT(depthRmsMm, 3.0);
+}
+
+TEST_F(PrepareCommandTest, KnownPosesFromATumFileGiveTheSamePoses) {
+  const fs::path out = test::freshTempDir("PrepareCommand_poses") / "map";
+  const CommandRun run = runReftrack(
+      commonArgs(out) + " --poses " + (*dir_ / "references.txt").string(), out.parent_path());
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  const ReferenceMap map = ReferenceMap::load(out);
+  // references.txt holds the exact poses at 17 significant digits: only round-off remains.
+  EXPECT_LT(RigidPose::translationDistance(map.T_A, *truthA_), 1e-9);
+  EXPECT_LT(RigidPose::rotationDistance(map.T_B, *truthB_), 1e-9);
+  EXPECT_GE(map.matches.size(), 300u);
+  EXPECT_NE(map.poseSource.find("references.txt"), std::string::npos);
+}
+
+TEST_F(PrepareCommandTest, NoMarkerInEitherImageNamesImageA) {
+  const fs::path scratch = test::freshTempDir("PrepareCommand_nomarker");
+  const fs::path a = withoutMarker(*dir_ / "reference_a.png", *truthA_, scratch / "a.png");
+  const fs::path b = withoutMarker(*dir_ / "reference_b.png", *truthB_, scratch / "b.png");
+  const CommandRun run =
+      runReftrack("prepare --camera " + (*dir_ / "camera.yml").string() + " --ref-a " + a.string() +
+                      " --ref-b " + b.string() + " --marker " + marker_->toString() + " --out " +
+                      (scratch / "map").string(),
+                  scratch);
+  EXPECT_EQ(run.exitCode, 1);
+  EXPECT_NE(run.err.find("a.png"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("not found"), std::string::npos) << run.err;
+  EXPECT_FALSE(fs::exists(scratch / "map" / ReferenceMap::kFileName));
+}
+
+TEST_F(PrepareCommandTest, MarkerInOneImageOnlyNamesTheOtherImage) {
+  const fs::path scratch = test::freshTempDir("PrepareCommand_onemarker");
+  const fs::path b = withoutMarker(*dir_ / "reference_b.png", *truthB_, scratch / "b_hidden.png");
+  const CommandRun run =
+      runReftrack("prepare --camera " + (*dir_ / "camera.yml").string() + " --ref-a " +
+                      (*dir_ / "reference_a.png").string() + " --ref-b " + b.string() +
+                      " --marker " + marker_->toString() + " --out " + (scratch / "map").string(),
+                  scratch);
+  EXPECT_EQ(run.exitCode, 1);
+  EXPECT_NE(run.err.find("b_hidden.png"), std::string::npos) << run.err;
+  EXPECT_EQ(run.err.find("reference_a.png"), std::string::npos) << run.err;
+  EXPECT_FALSE(fs::exists(scratch / "map" / ReferenceMap::kFileName));
+}
+
+TEST_F(PrepareCommandTest, IdenticalImagesAreRefusedForLackOfBaseline) {
+  const fs::path scratch = test::freshTempDir("PrepareCommand_identical");
+  const CommandRun run =
+      runReftrack("prepare --camera " + (*dir_ / "camera.yml").string() + " --ref-a " +
+                      (*dir_ / "reference_a.png").string() + " --ref-b " +
+                      (*dir_ / "reference_a.png").string() + " --marker " + marker_->toString() +
+                      " --out " + (scratch / "map").string(),
+                  scratch);
+  EXPECT_EQ(run.exitCode, 1);
+  EXPECT_NE(run.err.find("identical"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("baseline"), std::string::npos) << run.err;
+}
+
+TEST_F(PrepareCommandTest, CameraFileOfTheWrongSizeIsNamed) {
+  const fs::path scratch = test::freshTempDir("PrepareCommand_camsize");
+  PinholeCamera::load(*dir_ / "camera.yml").scaled(0.5).save(scratch / "half.yml");
+  const CommandRun run =
+      runReftrack("prepare --camera " + (scratch / "half.yml").string() + " --ref-a " +
+                      (*dir_ / "reference_a.png").string() + " --ref-b " +
+                      (*dir_ / "reference_b.png").string() + " --marker " + marker_->toString() +
+                      " --out " + (scratch / "map").string(),
+                  scratch);
+  EXPECT_EQ(run.exitCode, 1);
+  EXPECT_NE(run.err.find("half.yml"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("640x480"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("320x240"), std::string::npos) << run.err;
+}
+
+TEST_F(PrepareCommandTest, ShortPoseFileIsRefused) {
+  const fs::path scratch = test::freshTempDir("PrepareCommand_shortposes");
+  std::ofstream(scratch / "one.txt") << "0 0 0 1 0 0 0 1\n";
+  const CommandRun run = runReftrack(
+      commonArgs(scratch / "map") + " --poses " + (scratch / "one.txt").string(), scratch);
+  EXPECT_EQ(run.exitCode, 1);
+  EXPECT_NE(run.err.find("first two entries"), std::string::npos) << run.err;
+}
+
+TEST_F(PrepareCommandTest, PoseSourceIsRequiredExactlyOnce) {
+  const fs::path scratch = test::freshTempDir("PrepareCommand_usage");
+  const CommandRun neither = runReftrack(commonArgs(scratch / "map"), scratch);
+  EXPECT_EQ(neither.exitCode, 2) << neither.err;
+  EXPECT_NE(neither.err.find("--marker"), std::string::npos) << neither.err;
+  const CommandRun both =
+      runReftrack(commonArgs(scratch / "map") + " --marker " + marker_->toString() + " --poses " +
+                      (*dir_ / "references.txt").string(),
+                  scratch);
+  EXPECT_EQ(both.exitCode, 2) << both.err;
+  const CommandRun badMarker =
+      runReftrack(commonArgs(scratch / "map") + " --marker DICT_6X6_250:x:0.2", scratch);
+  EXPECT_EQ(badMarker.exitCode, 2) << badMarker.err;
+}

@@ -1,0 +1,52 @@
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+
+#include "CommandTestSupport.hpp"
+#include "TestPaths.hpp"
+
+using namespace reftrack::test;
+
+TEST(TrackCommand, HomographyModeWritesTheCsv) {
+  const auto dir = freshTempDir("TrackCommand_homography");
+  // The simulator renders the frames; the first one serves as the reference.
+  const auto sim = runReftrack(
+      "simulate --preset static --frames 5 --size 320x240 --out " + (dir / "sim").string(), dir);
+  ASSERT_EQ(sim.exitCode, 0) << sim.err;
+  const auto r = runReftrack("track --reference " + (dir / "sim" / "reference_a.png").string() +
+                                 " --input " + (dir / "sim" / "frames").string() + " --out-csv " +
+                                 (dir / "out.csv").string(),
+                             dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.out.find("5 frames, 5 tracked"), std::string::npos) << r.out;
+  std::ifstream in(dir / "out.csv");
+  int lines = 0;
+  for (std::string l; std::getline(in, l);) ++lines;
+  EXPECT_EQ(lines, 6);
+}
+
+TEST(TrackCommand, UsageAndRuntimeErrors) {
+  const auto dir = freshTempDir("TrackCommand_errors");
+  cv::imwrite((dir / "ref.png").string(), cv::Mat(240, 320, CV_8UC3, cv::Scalar(9, 9, 9)));
+  // Neither --reference nor --map: a usage error.
+  EXPECT_EQ(runReftrack("track --input " + dir.string(), dir).exitCode, 2);
+  // Options of the other mode: usage errors.
+  EXPECT_EQ(runReftrack("track --reference " + (dir / "ref.png").string() + " --map " +
+                            dir.string() + " --input x",
+                        dir)
+                .exitCode,
+            2);
+  EXPECT_EQ(runReftrack("track --mode 6dof --labels " + (dir / "ref.png").string() + " --map " +
+                            dir.string() + " --input x",
+                        dir)
+                .exitCode,
+            2);
+  EXPECT_EQ(runReftrack("track --reference missing.png --input x", dir).exitCode, 2);
+  // A flat reference has no corners: a runtime failure with one message.
+  const auto flat = runReftrack(
+      "track --reference " + (dir / "ref.png").string() + " --input " + (dir / "ref.png").string(),
+      dir);
+  EXPECT_EQ(flat.exitCode, 1);
+  EXPECT_FALSE(flat.err.empty());
+}

@@ -1,0 +1,179 @@
+// `reftrack view` end to end through the binary: recorded MP4 frame count (ffprobe), the UI
+// screenshot against a stored golden image, the GLFW window under Xvfb, and bad input.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "CommandTestSupport.hpp"
+#include "TestPaths.hpp"
+#include "engine/geometry/TumTrajectory.hpp"
+
+using namespace reftrack;
+namespace fs = std::filesystem;
+
+namespace {
+
+bool haveProgram(const std::string& name) {
+  return std::system(("command -v " + name + " >/dev/null 2>&1").c_str()) == 0;
+}
+
+// Frames counted by decoding (ffprobe -count_frames), or -1 when ffprobe fails.
+int ffprobeFrameCount(const fs::path& file, const fs::path& scratch) {
+  const fs::path out = scratch / "ffprobe.txt";
+  const std::string cmd =
+      "ffprobe -v error -select_streams v:0 -count_frames -show_entries stream=nb_read_frames "
+      "-of default=nokey=1:noprint_wrappers=1 '" +
+      file.string() + "' >'" + out.string() + "' 2>&1";
+  if (std::system(cmd.c_str()) != 0) return -1;
+  std::ifstream in(out);
+  int n = -1;
+  in >> n;
+  return n;
+}
+
+std::string makeSequence(const fs::path& dir, const std::string& size) {
+  const auto run = test::runReftrack(
+      "simulate --preset handheld --frames 3 --size " + size + " --out " + (dir / "seq").string(),
+      dir);
+  EXPECT_EQ(run.exitCode, 0) << run.err;
+  return (dir / "seq").string();
+}
+
+// One message line "reftrack view: error: ..." containing `needle`.
+void expectOneClearError(const test::CommandRun& run, const std::string& needle) {
+  EXPECT_EQ(run.exitCode, 1) << run.err;
+  EXPECT_NE(run.err.find("reftrack view: error: "), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find(needle), std::string::npos) << run.err;
+  EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+}
+
+}  // namespace
+
+TEST(ViewCommand, HeadlessRecordingHasExactlyNFrames) {
+  if (!haveProgram("ffprobe")) GTEST_SKIP() << "ffprobe not installed (Debian package ffmpeg)";
+  const fs::path dir = test::freshTempDir("ViewCommand_Record");
+  const auto run = test::runReftrack(
+      "view --headless --input sim:handheld --sim-size 320x240 --frames 12 --record " +
+          (dir / "out.mp4").string(),
+      dir);
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_EQ(ffprobeFrameCount(dir / "out.mp4", dir), 12);
+  EXPECT_EQ(TumTrajectory::load(dir / "out_trajectory.txt").poses.size(), 12u);
+}
+
+TEST(ViewCommand, UiScreenshotMatchesGolden) {
+  const fs::path dir = test::freshTempDir("ViewCommand_Golden");
+  const fs::path shot = dir / "ui.png";
+  const auto run = test::runReftrack(
+      "view --headless --ui --input sim:static --frames 2 --screenshot " + shot.string(), dir);
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  const fs::path golden = test::sourceDir() / "tests/app/golden/ui_panels.png";
+  const char* update = std::getenv("REFTRACK_UPDATE_GOLDEN");
+  if (update && std::string(update) == "1") {
+    fs::copy_file(shot, golden, fs::copy_options::overwrite_existing);
+    GTEST_SKIP() << "golden image regenerated: " << golden;
+  }
+  const cv::Mat expected = cv::imread(golden.string()), actual = cv::imread(shot.string());
+  ASSERT_FALSE(expected.empty()) << "missing " << golden << " (REFTRACK_UPDATE_GOLDEN=1 makes it)";
+  ASSERT_EQ(actual.size(), expected.size());
+  // A pixel differs when a channel is off by more than 40 levels: anti-aliased glyph and line
+  // edges may move by a grey step between Mesa builds, which stays below that. Up to 1% of the
+  // pixels may differ: the measured rate and timing figures in the Stats panel (a few short
+  // numbers; measured 25-30 pixels, 0.003%, between runs on one machine) change from run to run; a
+  // moved or missing panel, a broken overlay or a wrong video placement changes far more.
+  cv::Mat diff;
+  cv::absdiff(actual, expected, diff);
+  cv::Mat channelMax;
+  cv::Mat channels[3];
+  cv::split(diff, channels);
+  channelMax = cv::max(channels[0], cv::max(channels[1], channels[2]));
+  const double differing = cv::countNonZero(channelMax > 40);
+  const double fraction = differing / static_cast<double>(actual.total());
+  std::cout << "golden UI: " << differing << " pixels differ (" << 100 * fraction << "%)\n";
+  EXPECT_LT(fraction, 0.01) << differing << " pixels differ; see " << shot;
+  EXPECT_LT(cv::mean(channelMax)[0], 2.0);
+}
+
+TEST(ViewCommand, WindowUnderXvfbIsNotBlank) {
+  if (!haveProgram("xvfb-run")) GTEST_SKIP() << "xvfb-run not installed (Debian package xvfb)";
+  const fs::path dir = test::freshTempDir("ViewCommand_Window");
+  const fs::path shot = dir / "window.png";
+  const auto run =
+      test::runReftrack("--version >/dev/null; xvfb-run -a -s '-screen 0 1280x720x24' " +
+                            test::reftrackBinary().string() +
+                            " view --input sim:static --frames 10 --screenshot " + shot.string(),
+                        dir);
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_NE(run.out.find("glfw-window"), std::string::npos) << run.out;
+  const cv::Mat image = cv::imread(shot.string());
+  ASSERT_EQ(image.size(), cv::Size(1280, 720));
+  // Not blank: the video, overlay and panels give many distinct colours and real contrast.
+  cv::Mat grey;
+  cv::cvtColor(image, grey, cv::COLOR_BGR2GRAY);
+  cv::Scalar mean, stddev;
+  cv::meanStdDev(grey, mean, stddev);
+  EXPECT_GT(stddev[0], 20.0);
+  // The cube's edge colour (BGR 255,128,0) is somewhere in the video area.
+  cv::Mat edge;
+  cv::inRange(image, cv::Scalar(215, 88, 0), cv::Scalar(255, 168, 40), edge);
+  EXPECT_GT(cv::countNonZero(edge), 50);
+}
+
+TEST(ViewCommand, MissingVideoIsOneClearError) {
+  const fs::path dir = test::freshTempDir("ViewCommand_MissingVideo");
+  const std::string seq = makeSequence(dir, "160x120");
+  const auto run =
+      test::runReftrack("view --headless --input " + (dir / "nope.mp4").string() + " --camera " +
+                            seq + "/camera.yml --record " + (dir / "o.mp4").string(),
+                        dir);
+  expectOneClearError(run, "nope.mp4' does not exist");
+  EXPECT_FALSE(fs::exists(dir / "o.mp4"));
+}
+
+TEST(ViewCommand, UnreadableImageInFolderIsNamed) {
+  const fs::path dir = test::freshTempDir("ViewCommand_BadImage");
+  const std::string seq = makeSequence(dir, "160x120");
+  std::ofstream(fs::path(seq) / "frames" / "000001.png", std::ios::trunc) << "garbage";
+  const auto run = test::runReftrack("view --headless --input " + seq + "/frames --camera " + seq +
+                                         "/camera.yml --record " + (dir / "o.mp4").string(),
+                                     dir);
+  expectOneClearError(run, "000001.png' cannot be read");
+  EXPECT_FALSE(fs::exists(dir / "o.mp4"));
+  EXPECT_FALSE(fs::exists(dir / "o_trajectory.txt"));
+}
+
+TEST(ViewCommand, MissingCameraIndexIsOneClearError) {
+  const fs::path dir = test::freshTempDir("ViewCommand_Camera");
+  const std::string seq = makeSequence(dir, "160x120");
+  const auto run =
+      test::runReftrack("view --headless --input camera:97 --camera " + seq + "/camera.yml", dir);
+  expectOneClearError(run, "camera 97 does not exist");
+}
+
+TEST(ViewCommand, CameraSizeMismatchIsOneClearError) {
+  const fs::path dir = test::freshTempDir("ViewCommand_Size");
+  const std::string seq = makeSequence(dir, "160x120");
+  const auto run = test::runReftrack(
+      "view --headless --input sim:static --sim-size 320x240 --camera " + seq + "/camera.yml", dir);
+  expectOneClearError(run, "is for 160x120 frames but input 'sim:static' delivers 320x240 frames");
+}
+
+TEST(ViewCommand, NonSimulatorInputNeedsACamera) {
+  const fs::path dir = test::freshTempDir("ViewCommand_NeedsCamera");
+  const std::string seq = makeSequence(dir, "160x120");
+  const auto run = test::runReftrack("view --headless --input " + seq + "/frames", dir);
+  expectOneClearError(run, "needs --camera camera.yml");
+}
+
+TEST(ViewCommand, UsageErrorsExitWithTwo) {
+  const fs::path dir = test::freshTempDir("ViewCommand_Usage");
+  EXPECT_EQ(test::runReftrack("view --headless", dir).exitCode, 2);  // --input missing
+  EXPECT_EQ(test::runReftrack("view --headless --input sim:static --frames 0", dir).exitCode, 2);
+  EXPECT_EQ(test::runReftrack("view --input sim:static --camera /no/such.yml", dir).exitCode, 2);
+  EXPECT_EQ(test::runReftrack("view --input sim:static --sim-size big", dir).exitCode, 2);
+}

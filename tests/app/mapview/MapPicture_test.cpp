@@ -1,0 +1,67 @@
+#include "app/mapview/MapPicture.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "engine/core/Error.hpp"
+
+using namespace reftrack;
+
+namespace {
+
+// A 320x240 map of 40 points 1-2 m in front of A, B 0.2 m to its right, flat grey images.
+ReferenceMap smallMap() {
+  Eigen::Matrix3d K;
+  K << 300, 0, 159.5, 0, 300, 119.5, 0, 0, 1;
+  ReferenceMap map;
+  map.camera = PinholeCamera(K, cv::Size(320, 240));
+  map.T_A = RigidPose();
+  map.T_B = RigidPose(Eigen::Matrix3d::Identity(), Eigen::Vector3d(-0.2, 0.0, 0.0));
+  map.imageA = cv::Mat(240, 320, CV_8UC3, cv::Scalar(100, 100, 100));
+  map.imageB = map.imageA.clone();
+  std::mt19937 rng(2);
+  std::uniform_real_distribution<double> u(-0.3, 0.3), z(1.0, 2.0);
+  for (int i = 0; i < 40; ++i) {
+    const Eigen::Vector3d P(u(rng), u(rng), z(rng));
+    const Eigen::Vector2d a = map.camera.project(P), b = map.camera.project(map.T_B * P);
+    map.cornersA.push_back({cv::Point2f(static_cast<float>(a.x()), static_cast<float>(a.y())), 20});
+    map.cornersB.push_back({cv::Point2f(static_cast<float>(b.x()), static_cast<float>(b.y())), 20});
+    map.matches.push_back({i, i, P});
+  }
+  map.poseSource = "test";
+  return map;
+}
+
+bool isGrey(const cv::Vec3b& c) { return c[0] == c[1] && c[1] == c[2]; }
+
+}  // namespace
+
+TEST(MapPicture, ShowsMatchesInBothImagesAndPointsIn3d) {
+  const ReferenceMap map = smallMap();
+  const cv::Mat picture = app::drawMapPicture(map);
+  ASSERT_EQ(picture.size(), cv::Size(640, 480));
+  ASSERT_EQ(picture.type(), CV_8UC3);
+  // Matched corners are drawn in a depth colour (turbo: never grey) in A and in B.
+  int colouredA = 0, colouredB = 0;
+  for (const ReferenceMatch& m : map.matches) {
+    const cv::Point2f a = map.cornersA[static_cast<size_t>(m.cornerA)].pixel;
+    const cv::Point2f b = map.cornersB[static_cast<size_t>(m.cornerB)].pixel;
+    colouredA += !isGrey(picture.at<cv::Vec3b>(cvRound(a.y), cvRound(a.x)));
+    colouredB += !isGrey(picture.at<cv::Vec3b>(cvRound(b.y), cvRound(b.x) + 320));
+  }
+  EXPECT_EQ(colouredA, 40);
+  EXPECT_EQ(colouredB, 40);
+  // The 3D panel (bottom half, below its caption) holds coloured points and frusta.
+  const cv::Mat bottom = picture(cv::Rect(0, 300, 640, 180));
+  int coloured = 0;
+  for (int y = 0; y < bottom.rows; ++y)
+    for (int x = 0; x < bottom.cols; ++x) coloured += !isGrey(bottom.at<cv::Vec3b>(y, x));
+  EXPECT_GT(coloured, 200);
+}
+
+TEST(MapPicture, RefusesAnInconsistentMap) {
+  ReferenceMap map = smallMap();
+  map.matches[3].cornerB = 99;
+  EXPECT_THROW(app::drawMapPicture(map), Error);
+}

@@ -1,0 +1,66 @@
+// openFrameSource: each SRC form opens the right kind of source; bad ones say what is wrong.
+#include "app/sources/FrameSourceFactory.hpp"
+
+#include <gtest/gtest.h>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "TestPaths.hpp"
+#include "app/sources/ImageFolderSource.hpp"
+#include "app/sources/SimulatorSource.hpp"
+#include "app/sources/VideoFileSource.hpp"
+#include "engine/core/Error.hpp"
+#include "render/context/GlContext.hpp"
+
+using namespace reftrack;
+using namespace reftrack::app;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string errorOf(const std::string& input) {
+  try {
+    openFrameSource(input);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(FrameSourceFactory, FoldersAndGlobsAreImageSources) {
+  const fs::path dir = test::freshTempDir("FrameSourceFactory_Images");
+  for (int k = 0; k < 3; ++k)
+    cv::imwrite((dir / (std::to_string(k) + ".png")).string(), cv::Mat(8, 8, CV_8UC3));
+  FrameSourceOptions options;
+  options.imageFps = 12.0;
+  const auto folder = openFrameSource(dir.string(), options);
+  EXPECT_NE(dynamic_cast<ImageFolderSource*>(folder.get()), nullptr);
+  EXPECT_DOUBLE_EQ(folder->fps(), 12.0);
+  const auto glob = openFrameSource((dir / "[01].png").string());
+  EXPECT_EQ(glob->frameCount(), 2);
+}
+
+TEST(FrameSourceFactory, SimulatorInputUsesTheOptions) {
+  const auto context = render::createHeadlessContext();
+  FrameSourceOptions options;
+  options.simFrames = 4;
+  options.simSize = {96, 72};
+  EXPECT_TRUE(isSimulatorInput("sim:static"));
+  const auto source = openFrameSource("sim:static", options);
+  auto* sim = dynamic_cast<SimulatorSource*>(source.get());
+  ASSERT_NE(sim, nullptr);
+  EXPECT_EQ(sim->frameCount(), 4);
+  EXPECT_EQ(sim->camera().imageSize(), cv::Size(96, 72));
+}
+
+TEST(FrameSourceFactory, BadInputsAreExplained) {
+  EXPECT_NE(errorOf("sim:spiral").find("unknown simulator preset"), std::string::npos);
+  EXPECT_NE(errorOf("camera:").find("expected camera:N"), std::string::npos);
+  EXPECT_NE(errorOf("camera:1x").find("expected camera:N"), std::string::npos);
+  EXPECT_NE(errorOf("camera:98").find("camera 98 does not exist"), std::string::npos);
+  EXPECT_NE(errorOf("/no/such/video.mp4").find("video file '/no/such/video.mp4' does not exist"),
+            std::string::npos);
+  EXPECT_NE(errorOf("").find("empty"), std::string::npos);
+}

@@ -1,0 +1,39 @@
+// StatsHistory: bounded history, mean loop rate and pose series with gaps.
+#include "app/viewer/StatsHistory.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "engine/core/Error.hpp"
+
+using namespace reftrack;
+using namespace reftrack::app;
+
+TEST(StatsHistory, KeepsTheLastFramesAndComputesSeries) {
+  StatsHistory h(3);
+  for (int k = 0; k < 5; ++k) {
+    FrameStats s;
+    s.index = k;
+    s.loopMilliseconds = k == 0 ? 0.0 : 40.0;
+    s.inliers = 10 * k;
+    if (k != 3) {
+      Vector6d v;
+      v << k, 0, 0, 0, 0, -k;
+      s.pose = v;
+    }
+    h.add(s);
+  }
+  ASSERT_EQ(h.frames().size(), 3u);
+  EXPECT_EQ(h.frames().front().index, 2);
+  EXPECT_DOUBLE_EQ(h.meanFps(), 25.0);  // 40 ms per frame
+  const auto tx = h.poseSeries(0), rz = h.poseSeries(5);
+  EXPECT_FLOAT_EQ(tx[0], 2.0f);
+  EXPECT_TRUE(std::isnan(tx[1]));  // frame 3 had no pose
+  EXPECT_FLOAT_EQ(rz[2], -4.0f);
+  EXPECT_EQ(h.inlierSeries(), (std::vector<float>{20, 30, 40}));
+  EXPECT_THROW(h.poseSeries(6), Error);
+  EXPECT_THROW(StatsHistory(0), Error);
+  h.clear();
+  EXPECT_DOUBLE_EQ(h.meanFps(), 0.0);
+}
