@@ -90,4 +90,24 @@ void requireIntInRange(const std::string& field, int value, int lo, int hi) {
                 std::to_string(hi) + "], got " + std::to_string(value));
 }
 
+void readParameterFile(const std::filesystem::path& file,
+                       const std::function<void(const cv::FileNode& root)>& read) {
+  const std::string where = "parameter file '" + file.string() + "'";
+  if (!std::filesystem::exists(file)) throw Error(where + " does not exist");
+  cv::FileStorage fs;
+  try {
+    if (!fs.open(file.string(), cv::FileStorage::READ))
+      throw Error(where + " cannot be opened as OpenCV YAML/XML");
+  } catch (const cv::Exception& e) {
+    throw Error(where + " is not valid OpenCV YAML/XML: " + e.err);
+  }
+  try {
+    read(fs.root());
+  } catch (const Error& e) {
+    throw Error(where + ": " + e.what());
+  } catch (const cv::Exception& e) {
+    throw Error(where + " has a malformed entry: " + e.err);
+  }
+}
+
 }  // namespace reftrack

@@ -2,6 +2,8 @@
 // Typed reading of one key of a parameter section (cv::FileNode map). A missing key leaves the
 // value unchanged (the default); a value of the wrong type, NaN or infinity throws
 // reftrack::Error naming "section.key".
+#include <filesystem>
+#include <functional>
 #include <opencv2/core.hpp>
 #include <string>
 
@@ -17,6 +19,11 @@ void readConfigValue(const cv::FileNode& section, const std::string& sectionName
                      const std::string& key, std::string& value);
 
 // Throws reftrack::Error "<field> must be ..." unless value is finite and within [lo, hi].
+// Opens an OpenCV YAML/XML parameter file and hands its root to `read`; every failure (missing,
+// unparsable, a bad entry) throws reftrack::Error naming the file.
+void readParameterFile(const std::filesystem::path& file,
+                       const std::function<void(const cv::FileNode& root)>& read);
+
 void requireFiniteInRange(const std::string& field, double value, double lo, double hi);
 void requireIntInRange(const std::string& field, int value, int lo, int hi);
 

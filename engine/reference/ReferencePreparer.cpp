@@ -87,23 +87,8 @@ std::string ReferencePreparerParams::toYaml() const {
 }
 
 ReferencePreparerParams ReferencePreparerParams::load(const std::filesystem::path& file) {
-  const std::string where = "parameter file '" + file.string() + "'";
-  if (!std::filesystem::exists(file)) throw Error(where + " does not exist");
-  cv::FileStorage fs;
-  try {
-    if (!fs.open(file.string(), cv::FileStorage::READ))
-      throw Error(where + " cannot be opened as OpenCV YAML/XML");
-  } catch (const cv::Exception& e) {
-    throw Error(where + " is not valid OpenCV YAML/XML: " + e.err);
-  }
   ReferencePreparerParams p;
-  try {
-    p.read(fs.root());
-  } catch (const Error& e) {
-    throw Error(where + ": " + e.what());
-  } catch (const cv::Exception& e) {
-    throw Error(where + " has a malformed entry: " + e.err);
-  }
+  readParameterFile(file, [&](const cv::FileNode& root) { p.read(root); });
   return p;
 }
 
