@@ -52,6 +52,10 @@ class WideBaselineMatcher {
                    const MatchableReference& reference, cv::Matx33d& L) const;
 
  private:
+  // localAffine restricted to the previous matches listed in `nearby`.
+  bool localAffineFrom(cv::Point2d p, const std::vector<PreviousMatch>& previous,
+                       const std::vector<int>& nearby, const MatchableReference& reference,
+                       cv::Matx33d& L) const;
   WideBaselineParams params_;
 };
 
