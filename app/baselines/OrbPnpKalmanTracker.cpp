@@ -4,6 +4,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "engine/core/Error.hpp"
+#include "engine/geometry/FundamentalMatrix.hpp"
 #include "engine/reference/TwoViewTriangulator.hpp"
 
 namespace reftrack::app {
@@ -59,11 +60,7 @@ OrbPnpKalmanTracker::OrbPnpKalmanTracker(const ReferenceMap& map, OrbPnpKalmanPa
   const std::vector<cv::Point2f> undB = map.camera.undistortPixels(ptsB);
   const RigidPose T_AB = map.T_AB();
   const TwoViewTriangulator triangulator(map.camera.K(), T_AB);
-  const Eigen::Matrix3d Kinv = map.camera.K().inverse();
-  Eigen::Matrix3d tx;
-  const Eigen::Vector3d t = T_AB.translation();
-  tx << 0, -t.z(), t.y(), t.z(), 0, -t.x(), -t.y(), t.x(), 0;
-  const Eigen::Matrix3d F = Kinv.transpose() * tx * T_AB.rotation() * Kinv;
+  const Eigen::Matrix3d F = fundamentalMatrix(map.camera.K(), T_AB);
   const RigidPose AtoWorld = map.T_A.inverse();
   for (const auto& m : knn) {
     if (m.size() < 2 || m[0].distance >= params_.ratioTest * m[1].distance) continue;

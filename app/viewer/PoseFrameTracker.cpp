@@ -1,5 +1,7 @@
 #include "app/viewer/PoseFrameTracker.hpp"
 
+#include "engine/geometry/FundamentalMatrix.hpp"
+
 namespace reftrack::app {
 
 PoseFrameTracker::PoseFrameTracker(ReferenceMap map, const TrackerParams& params)
@@ -20,11 +22,7 @@ TrackingResult PoseFrameTracker::process(const cv::Mat& frame, int, double) {
   if (last_.T_Ak) {
     // Epipolar lines in the frame of a few V_A matches: l = F_Ak p_A (undistorted geometry;
     // drawn on the distorted frame, which is exact only without lens distortion).
-    const Eigen::Matrix3d Kinv = tracker_.map().camera.K().inverse();
-    const Eigen::Vector3d t = last_.T_Ak->translation();
-    Eigen::Matrix3d tx;
-    tx << 0, -t.z(), t.y(), t.z(), 0, -t.x(), -t.y(), t.x(), 0;
-    const Eigen::Matrix3d F = Kinv.transpose() * tx * last_.T_Ak->rotation() * Kinv;
+    const Eigen::Matrix3d F = fundamentalMatrix(tracker_.map().camera.K(), *last_.T_Ak);
     const std::size_t step = std::max<std::size_t>(1, last_.inliersA.size() / 12);
     for (std::size_t i = 0; i < last_.inliersA.size(); i += step) {
       const cv::Point2f& pA = last_.inliersA[i].second;

@@ -7,6 +7,7 @@
 
 #include "engine/config/ConfigValue.hpp"
 #include "engine/core/Error.hpp"
+#include "engine/geometry/FundamentalMatrix.hpp"
 #include "engine/matching/NccCorrelation.hpp"
 #include "engine/reference/TwoViewTriangulator.hpp"
 
@@ -17,12 +18,6 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 // Plane hypotheses within ~78 degrees of edge-on to the viewing ray are skipped.
 constexpr double kMinPlaneCosine = 0.2;
-
-Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
-  Eigen::Matrix3d S;
-  S << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
-  return S;
-}
 
 std::vector<Eigen::Vector2d> undistorted(const PinholeCamera& camera,
                                          const std::vector<cv::Point2f>& pixels) {
@@ -113,8 +108,8 @@ EpipolarGuidedMatcher::EpipolarGuidedMatcher(PinholeCamera camera, const RigidPo
     throw Error(
         "epipolar matching: the two reference cameras are at the same place (no baseline), so "
         "there are no epipolar lines to match along");
-  const Eigen::Matrix3d Kinv = camera_.K().inverse();
-  F_ = Kinv.transpose() * skew(T_AB_.translation()) * T_AB_.rotation() * Kinv;
+
+  F_ = fundamentalMatrix(camera_.K(), T_AB_);
 
   planeNormalsA_.push_back(Eigen::Vector3d::UnitZ());  // fronto-parallel
   planeNormalsA_.push_back(T_A.rotation().col(2));     // the world's z = 0 plane

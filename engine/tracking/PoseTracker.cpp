@@ -12,6 +12,7 @@
 #include "engine/estimation/RegularizedPoseEstimator.hpp"
 #include "engine/estimation/TemporalRegularizer.hpp"
 #include "engine/features/CornerDetector.hpp"
+#include "engine/geometry/FundamentalMatrix.hpp"
 #include "engine/matching/NarrowBaselineMatcher.hpp"
 #include "engine/tracking/WideBaselineMatcher.hpp"
 
@@ -84,12 +85,9 @@ PreparedReference prepare(const cv::Mat& image, const std::vector<ReferenceCorne
 }
 
 // Point-to-epipolar-line distances for a match under T (reference camera -> current camera).
-double maxEpipolarDistance(const Eigen::Matrix3d& Kinv, const RigidPose& T,
+double maxEpipolarDistance(const Eigen::Matrix3d& K, const RigidPose& T,
                            const Eigen::Vector2d& pRef, const Eigen::Vector2d& pK) {
-  const Eigen::Vector3d t = T.translation();
-  Eigen::Matrix3d tx;
-  tx << 0, -t.z(), t.y(), t.z(), 0, -t.x(), -t.y(), t.x(), 0;
-  const Eigen::Matrix3d F = Kinv.transpose() * tx * T.rotation() * Kinv;
+  const Eigen::Matrix3d F = fundamentalMatrix(K, T);
   const Eigen::Vector3d a(pRef.x(), pRef.y(), 1.0), k(pK.x(), pK.y(), 1.0);
   const Eigen::Vector3d lk = F * a, la = F.transpose() * k;
   const double e = k.dot(lk);
@@ -107,7 +105,6 @@ struct PoseTracker::Impl {
   CornerVarianceModel varianceModel;
   ArMotionModel motionModel;
   PreparedReference refA, refB;
-  Eigen::Matrix3d Kinv;
   std::unique_ptr<RegularizedPoseEstimator> estimator;
   std::unique_ptr<TemporalRegularizer> regularizer;
   TrackingState state = TrackingState::Initialising;
@@ -124,7 +121,6 @@ struct PoseTracker::Impl {
     limits.check();
     refA = prepare(map.imageA, map.cornersA, map.camera, map.matches, true);
     refB = prepare(map.imageB, map.cornersB, map.camera, map.matches, false);
-    Kinv = map.camera.K().inverse();
     estimator = std::make_unique<RegularizedPoseEstimator>(map.camera.K(), map.T_AB());
     applyPoseParams();
   }
@@ -354,7 +350,7 @@ PoseTrackingResult PoseTracker::Impl::process(const cv::Mat& frame) {
   for (std::size_t i = 0; i < mA.size(); ++i) {
     const Eigen::Vector2d& pK = undist[static_cast<std::size_t>(mA[i].frameCorner)];
     const Eigen::Vector2d& pRef = refA.undistorted[static_cast<std::size_t>(mA[i].referenceCorner)];
-    if (maxEpipolarDistance(Kinv, TAkLin, pRef, pK) > gate) continue;
+    if (maxEpipolarDistance(map.camera.K(), TAkLin, pRef, pK) > gate) continue;
     inlierA[i] = 1;
     if (!useEpipolarA) continue;
     meas.toA.push_back({pRef, pK,
@@ -364,7 +360,7 @@ PoseTrackingResult PoseTracker::Impl::process(const cv::Mat& frame) {
   for (std::size_t i = 0; i < mB.size(); ++i) {
     const Eigen::Vector2d& pK = undist[static_cast<std::size_t>(mB[i].frameCorner)];
     const Eigen::Vector2d& pRef = refB.undistorted[static_cast<std::size_t>(mB[i].referenceCorner)];
-    if (maxEpipolarDistance(Kinv, TBkLin, pRef, pK) > gate) continue;
+    if (maxEpipolarDistance(map.camera.K(), TBkLin, pRef, pK) > gate) continue;
     inlierB[i] = 1;
     if (!useEpipolarB) continue;
     meas.toB.push_back({pRef, pK,
