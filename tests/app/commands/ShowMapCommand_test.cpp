@@ -8,6 +8,7 @@
 #include <random>
 #include <sstream>
 
+#include "CommandTestSupport.hpp"
 #include "TestPaths.hpp"
 #include "engine/reference/ReferenceMap.hpp"
 
@@ -16,20 +17,11 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct CommandRun {
-  int exitCode;
-  std::string err;
-};
+using test::CommandRun;
 
+// `reftrack show-map ARGS`, run through the built binary.
 CommandRun showMap(const std::string& args, const fs::path& scratch) {
-  const fs::path errFile = scratch / "stderr.txt";
-  const std::string cmd =
-      test::reftrackBinary().string() + " show-map " + args + " >/dev/null 2>" + errFile.string();
-  const int status = std::system(cmd.c_str());
-  std::ifstream in(errFile);
-  std::stringstream err;
-  err << in.rdbuf();
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, err.str()};
+  return test::runReftrack("show-map " + args, scratch);
 }
 
 // A saved 320x240 map: textured images, 60 points 1-2 m in front of A, B 0.2 m to its right.

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "CommandTestSupport.hpp"
 #include "TestPaths.hpp"
 #include "engine/geometry/PinholeCamera.hpp"
 #include "engine/geometry/TumTrajectory.hpp"
@@ -15,20 +16,11 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct CommandRun {
-  int exitCode;
-  std::string err;
-};
+using test::CommandRun;
 
+// `reftrack simulate ARGS`, run through the built binary.
 CommandRun simulate(const std::string& args, const fs::path& scratch) {
-  const fs::path errFile = scratch / "stderr.txt";
-  const std::string cmd =
-      test::reftrackBinary().string() + " simulate " + args + " >/dev/null 2>" + errFile.string();
-  const int status = std::system(cmd.c_str());
-  std::ifstream in(errFile);
-  std::stringstream err;
-  err << in.rdbuf();
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, err.str()};
+  return test::runReftrack("simulate " + args, scratch);
 }
 
 }  // namespace
