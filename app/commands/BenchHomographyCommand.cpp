@@ -8,6 +8,7 @@
 #include <opencv2/core/utility.hpp>
 #include <sstream>
 
+#include "app/cli/ImageSizeValidator.hpp"
 #include "app/commands/Commands.hpp"
 #include "app/homography/HomographyBenchmark.hpp"
 #include "app/simulator/SimulationOptions.hpp"
@@ -50,12 +51,7 @@ CommandRegistration registerBenchHomographyCommand(CLI::App& parent) {
   CLI::App* sub = parent.add_subcommand(
       "bench-homography", "Homography mode vs ORB + findHomography on the same frames (speed)");
   sub->add_option("--sizes", args->sizes, "Image sizes WIDTHxHEIGHT")
-      ->check(CLI::Validator(
-          [](std::string& text) {
-            return parseImageSize(text) ? std::string()
-                                        : "expected WIDTHxHEIGHT, for example 640x480";
-          },
-          "WxH"))
+      ->check(imageSizeValidator())
       ->capture_default_str();
   sub->add_option("--frames", args->frames, "Frames per size")
       ->check(CLI::Range(1, 100000))

@@ -8,6 +8,7 @@
 #include <memory>
 #include <opencv2/core/utility.hpp>
 
+#include "app/cli/ImageSizeValidator.hpp"
 #include "app/commands/Commands.hpp"
 #include "app/homography/RotationSweepExperiment.hpp"
 #include "app/homography/StaticHomographyExperiment.hpp"
@@ -103,12 +104,7 @@ CommandRegistration registerExperimentHomographyCommand(CLI::App& parent) {
       ->check(CLI::IsMember({"static", "rotation", "all"}))
       ->capture_default_str();
   sub->add_option("--size", args->size, "Image size WIDTHxHEIGHT")
-      ->check(CLI::Validator(
-          [](std::string& text) {
-            return parseImageSize(text) ? std::string()
-                                        : "expected WIDTHxHEIGHT, for example 320x240";
-          },
-          "WxH"))
+      ->check(imageSizeValidator())
       ->capture_default_str();
   sub->add_option("--frames", args->frames, "Static: frames")
       ->check(CLI::Range(1, 100000))

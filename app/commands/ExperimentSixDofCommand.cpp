@@ -9,6 +9,7 @@
 #include <memory>
 #include <opencv2/core/utility.hpp>
 
+#include "app/cli/ImageSizeValidator.hpp"
 #include "app/commands/Commands.hpp"
 #include "app/experiments/SixDofPlots.hpp"
 #include "app/experiments/SixDofRuns.hpp"
@@ -51,12 +52,7 @@ CommandRegistration registerExperimentSixDofCommand(CLI::App& parent) {
   sub->add_option("--preset", o->simulation.preset, "Camera path")
       ->check(CLI::IsMember({"handheld", "orbit", "rotate", "static", "forward"}));
   sub->add_option("--frames", o->simulation.frames, "Frames")->check(CLI::Range(3, 100000));
-  sub->add_option("--size", o->size, "Image size WxH")
-      ->check(CLI::Validator(
-          [](std::string& text) {
-            return parseImageSize(text) ? std::string() : "expected WIDTHxHEIGHT, got " + text;
-          },
-          "WxH"));
+  sub->add_option("--size", o->size, "Image size WxH")->check(imageSizeValidator());
   sub->add_option("--seed", o->simulation.seed, "Noise and shake seed");
   sub->add_option("--noise", o->simulation.noiseSigma, "Sensor noise SD (grey levels)")
       ->check(CLI::Range(0.0, 50.0));

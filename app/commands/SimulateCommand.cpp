@@ -3,6 +3,7 @@
 #include <iostream>
 #include <memory>
 
+#include "app/cli/ImageSizeValidator.hpp"
 #include "app/commands/Commands.hpp"
 #include "app/simulator/SceneSimulator.hpp"
 #include "app/simulator/SimulationWriter.hpp"
@@ -36,12 +37,7 @@ CommandRegistration registerSimulateCommand(CLI::App& parent) {
       ->check(CLI::Range(1, 1000000))
       ->capture_default_str();
   sub->add_option("--size", args->size, "Image size WIDTHxHEIGHT")
-      ->check(CLI::Validator(
-          [](std::string& text) {
-            return parseImageSize(text) ? std::string()
-                                        : "expected WIDTHxHEIGHT, for example 640x480";
-          },
-          "WxH"))
+      ->check(imageSizeValidator())
       ->capture_default_str();
   sub->add_option("--out", args->out, "Output folder (created if missing)")->required();
   sub->add_option("--seed", o.seed, "Seed of sensor noise and hand shake")->capture_default_str();

@@ -5,6 +5,7 @@
 #include <memory>
 #include <opencv2/imgcodecs.hpp>
 
+#include "app/cli/ImageSizeValidator.hpp"
 #include "app/commands/Commands.hpp"
 #include "app/simulator/SimulationOptions.hpp"
 #include "app/viewer/HomographyFrameTracker.hpp"
@@ -23,14 +24,6 @@ struct ViewArgs {
   std::string simSize = "640x480";
   std::filesystem::path map, reference, labels;
 };
-
-CLI::Validator imageSizeValidator() {
-  return CLI::Validator(
-      [](std::string& text) {
-        return parseImageSize(text) ? std::string() : "expected WIDTHxHEIGHT, for example 640x480";
-      },
-      "WxH");
-}
 
 CommandRegistration registerViewCommand(CLI::App& parent) {
   auto args = std::make_shared<ViewArgs>();
