@@ -1,6 +1,7 @@
 // `reftrack view`: the AR viewer — frames from a video, an image folder or glob, a live camera or
 // the simulator, the virtual object drawn at the tracked pose, ImGui panels, recording; in a
 // window, or headless (OSMesa/EGL) for screenshots and recordings.
+#include <cstdio>
 #include <iostream>
 #include <memory>
 #include <opencv2/imgcodecs.hpp>
@@ -12,6 +13,7 @@
 #include "app/viewer/ModeSwitchingTracker.hpp"
 #include "app/viewer/PoseFrameTracker.hpp"
 #include "app/viewer/ViewerApp.hpp"
+#include "engine/calibration/CalibrationBoard.hpp"
 #include "engine/core/Error.hpp"
 
 namespace reftrack::app {
@@ -36,7 +38,10 @@ CommandRegistration registerViewCommand(CLI::App& parent) {
       "Poses come from the 6-DOF tracker (--map), the homography tracker (--reference), or a\n"
       "replayed trajectory (--poses, TUM camera in world); sim: inputs without them replay\n"
       "their ground truth. Recording writes OUT.mp4 (one frame per processed frame, at\n"
-      "the source frame rate) and OUT_trajectory.txt (TUM) beside it.");
+      "the source frame rate) and OUT_trajectory.txt (TUM) beside it.\n"
+      "--calibrate BOARD opens the Calibration panel (capture views, coverage, calibrate, save\n"
+      "camera.yml, use it for tracking); --camera is then optional. Headless, every frame is\n"
+      "examined, views are captured automatically and the camera is calibrated at the end.");
   sub->add_option("--input", o.input, "Frame source SRC")->required();
   sub->add_option("--camera", o.camera, "camera.yml (required unless SRC is sim:)")
       ->check(CLI::ExistingFile);
@@ -68,6 +73,26 @@ CommandRegistration registerViewCommand(CLI::App& parent) {
   sub->add_option("--sim-size", args->simSize, "Image size of a sim: sequence")
       ->check(imageSizeValidator())
       ->capture_default_str();
+
+  sub->add_option("--calibrate", o.calibrateBoard,
+                  "Live calibration with this board: chessboard:COLSxROWS:SQUARE_M (inner "
+                  "corners) or charuco:DICT:SQXxSQY:SQUARE_M:MARKER_M")
+      ->check(CLI::Validator(
+          [](std::string& text) {
+            try {
+              CalibrationBoard::parse(text);
+            } catch (const Error& e) {
+              return std::string(e.what());
+            }
+            return std::string();
+          },
+          "BOARD"));
+  sub->add_option("--calibrate-every", o.calibrateEvery,
+                  "Auto-capture a view every N frames while the board is found (headless: "
+                  "default 1)")
+      ->check(CLI::Range(1, 100000));
+  sub->add_option("--calibration-out", o.calibrationOut,
+                  "Headless --calibrate: write the calibrated camera.yml here");
 
   return {sub, [args, sub] {
             ViewerOptions options = args->options;
@@ -105,6 +130,23 @@ CommandRegistration registerViewCommand(CLI::App& parent) {
               std::cout << "recorded " << s.recording.string() << " and " << s.trajectory.string()
                         << "\n";
             if (!s.screenshot.empty()) std::cout << "screenshot " << s.screenshot.string() << "\n";
+            if (!options.calibrateBoard.empty() && options.headless) {
+              std::printf("calibration: %d views captured, %d rejected\n", s.calibrationCaptured,
+                          s.calibrationRejected);
+              if (s.calibration) {
+                const CalibrationResult& r = *s.calibration;
+                std::printf("RMS reprojection error: %.4f px\n", r.rmsPx);
+                std::printf("fx %.3f  fy %.3f  cx %.3f  cy %.3f\n", r.camera.fx(), r.camera.fy(),
+                            r.camera.cx(), r.camera.cy());
+                for (const CalibrationViewError& v : r.views)
+                  std::printf("  %-10s %4d corners  %.4f px\n", v.label.c_str(), v.corners,
+                              v.rmsPx);
+              } else {
+                std::printf("%s\n", s.calibrationMessage.c_str());
+              }
+              if (!s.calibrationFile.empty())
+                std::printf("wrote %s\n", s.calibrationFile.string().c_str());
+            }
           }};
 }
 

@@ -9,11 +9,12 @@ constexpr float kColumnWidth = 330.0f;
 constexpr float kSourceHeight = 170.0f;
 constexpr float kRecordHeight = 120.0f;
 constexpr float kOverlayHeight = 300.0f;
+constexpr float kStatsHeightBesideCalibration = 200.0f;
 constexpr int kMinimumVideoWidth = 160;
 constexpr int kMinimumHeight = kSourceHeight + kRecordHeight + 200;
 }  // namespace
 
-PanelLayout panelLayout(cv::Size canvas) {
+PanelLayout panelLayout(cv::Size canvas, bool withCalibration) {
   if (canvas.width < 2 * kColumnWidth + kMinimumVideoWidth || canvas.height < kMinimumHeight)
     throw Error("viewer canvas " + std::to_string(canvas.width) + "x" +
                 std::to_string(canvas.height) + " is too small for the panels (at least " +
@@ -26,6 +27,14 @@ PanelLayout panelLayout(cv::Size canvas) {
   l.record = {0, h - kRecordHeight, kColumnWidth, kRecordHeight};
   l.overlay = {w - kColumnWidth, 0, kColumnWidth, kOverlayHeight};
   l.stats = {w - kColumnWidth, kOverlayHeight, kColumnWidth, h - kOverlayHeight};
+  if (withCalibration) {
+    const float shared = 0.5f * (h - kSourceHeight - kRecordHeight);
+    l.tracking.height = shared;
+    l.overlay = {0, kSourceHeight + shared, kColumnWidth, shared};
+    l.calibration = {w - kColumnWidth, 0, kColumnWidth, h - kStatsHeightBesideCalibration};
+    l.stats = {w - kColumnWidth, h - kStatsHeightBesideCalibration, kColumnWidth,
+               kStatsHeightBesideCalibration};
+  }
   const int column = static_cast<int>(kColumnWidth);
   l.videoArea = {column, 0, canvas.width - 2 * column, canvas.height};
   return l;

@@ -8,6 +8,7 @@
 #include <imgui_impl_glfw.h>
 #include <imgui_impl_opengl3.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -17,6 +18,8 @@
 #include "app/cli/ProgressBar.hpp"
 #include "app/sources/FrameGrabber.hpp"
 #include "app/sources/SimulatorSource.hpp"
+#include "app/viewer/CalibrationPanel.hpp"
+#include "app/viewer/LiveCalibration.hpp"
 #include "app/viewer/OverlayCompositor.hpp"
 #include "app/viewer/OverlayPanel.hpp"
 #include "app/viewer/PanelLayout.hpp"
@@ -51,6 +54,12 @@ void ViewerOptions::check() const {
   if (!screenshot.empty() && screenshot.extension() != ".png")
     throw Error("screenshot '" + screenshot.string() + "': the file name must end in .png");
   if (ui && !headless) throw Error("--ui applies to --headless runs (the window always has it)");
+  if (!calibrateBoard.empty()) CalibrationBoard::parse(calibrateBoard);  // throws on a bad board
+  if (calibrateEvery < 0) throw Error("--calibrate-every must not be negative");
+  if (!calibrationOut.empty() && calibrateBoard.empty())
+    throw Error("--calibration-out needs --calibrate BOARD");
+  if (!calibrationOut.empty() && !headless)
+    throw Error("--calibration-out applies to --headless runs (the window has a Save button)");
 }
 
 bool windowSystemAvailable() {
@@ -69,6 +78,10 @@ struct Session {
   std::unique_ptr<FrameGrabber> grabber;
   PinholeCamera camera;
   std::unique_ptr<FrameTracker> tracker;  // null: no poses (video only)
+  // Builds a live tracker for a camera (ViewerOptions::makeTracker); used again when a camera
+  // calibrated in the viewer is put to use.
+  std::function<std::unique_ptr<FrameTracker>(const PinholeCamera&, const TrackerParams&)>
+      makeTracker;
   Frame first;
 };
 
@@ -83,7 +96,13 @@ Session openSession(const ViewerOptions& options, ViewerState& state) {
   std::unique_ptr<FrameSource> source = openFrameSource(options.input, options.source);
   const auto* sim = dynamic_cast<const SimulatorSource*>(source.get());
   std::string cameraName;
-  if (!options.camera.empty()) {
+  // Calibrating without a camera file: K is guessed from the first frame's size below, and no
+  // live tracker is built until the calibrated camera is put to use.
+  const bool guessCamera = options.camera.empty() && !sim && !options.calibrateBoard.empty();
+  s.makeTracker = options.makeTracker;
+  if (guessCamera) {
+    cameraName = "the guessed camera";
+  } else if (!options.camera.empty()) {
     s.camera = PinholeCamera::load(options.camera);
     cameraName = "camera file '" + options.camera.string() + "'";
   } else if (sim) {
@@ -97,12 +116,14 @@ Session openSession(const ViewerOptions& options, ViewerState& state) {
   if (!options.poses.empty())
     s.tracker = std::make_unique<TrajectoryReplayTracker>(
         TrajectoryReplayTracker::load(options.poses, source->fps()));
-  else if (options.makeTracker)
+  else if (options.makeTracker && !guessCamera)
     s.tracker = options.makeTracker(s.camera, state.settings.tracker);
   else if (sim)
     s.tracker = std::make_unique<TrajectoryReplayTracker>(sim->groundTruth(), source->fps());
   if (s.tracker) s.tracker->applyParams(state.settings.tracker);
-  state.trackerName = s.tracker ? s.tracker->name() : "none (no --poses)";
+  state.trackerName = s.tracker                            ? s.tracker->name()
+                      : guessCamera && options.makeTracker ? "none until calibrated"
+                                                           : "none (no --poses)";
 
   state.source.description = source->description();
   state.source.frameCount = source->frameCount();
@@ -113,6 +134,7 @@ Session openSession(const ViewerOptions& options, ViewerState& state) {
 
   std::optional<Frame> first = s.grabber->next();
   if (!first) throw Error("input '" + options.input + "' holds no frame");
+  if (guessCamera) s.camera = PinholeCamera::fromFieldOfView(first->image.size(), 60.0);
   if (first->image.size() != s.camera.imageSize())
     throw Error(cameraName + " is for " + std::to_string(s.camera.imageSize().width) + "x" +
                 std::to_string(s.camera.imageSize().height) + " frames but input '" +
@@ -129,6 +151,7 @@ struct FrameLoop {
   ViewerState& state;
   OverlayCompositor compositor;
   std::unique_ptr<VideoRecorder> recorder;
+  std::unique_ptr<LiveCalibration> calibration;  // with --calibrate
   Frame current;
   TrackingResult result;
   Clock::time_point lastProcessed{};
@@ -185,6 +208,40 @@ struct FrameLoop {
     state.source.currentIndex = current.index;
     state.source.droppedFrames = session.grabber->droppedFrames();
     ++processed;
+  }
+
+  // Live calibration: carries out the Calibration panel's requests for the current frame and puts
+  // a calibrated camera to use when asked.
+  void updateCalibration() {
+    if (!calibration) return;
+    calibration->update(current, processed, state.calibration);
+    if (std::optional<PinholeCamera> camera = calibration->takeCameraForTracking())
+      useCamera(*camera);
+  }
+
+  void useCamera(const PinholeCamera& camera) {
+    CalibrationState& c = state.calibration;
+    try {
+      if (camera.imageSize() != session.camera.imageSize())
+        throw Error("the calibrated camera is for another frame size");
+      std::unique_ptr<FrameTracker> tracker;
+      if (session.makeTracker) {
+        tracker = session.makeTracker(camera, state.settings.tracker);
+        tracker->applyParams(state.settings.tracker);
+      }
+      session.camera = camera;
+      if (tracker) {
+        session.tracker = std::move(tracker);
+        state.trackerName = session.tracker->name();
+      }
+      c.usedForTracking = true;
+      c.message = tracker           ? "tracking with the calibrated camera"
+                  : session.tracker ? "the overlay uses the calibrated camera"
+                                    : "the overlay uses the calibrated camera (no live tracker: "
+                                      "give --map or --reference)";
+    } catch (const std::exception& e) {
+      c.message = std::string("cannot use the camera: ") + e.what();
+    }
   }
 
   // The next frame in order, honouring loop; false at the end.
@@ -274,11 +331,25 @@ class ImGuiSession {
 };
 
 void drawPanels(ViewerState& state, const PanelLayout& layout) {
+  if (state.calibration.active) drawCalibrationPanel(state.calibration, layout.calibration);
   drawSourcePanel(state.source, layout.source);
   drawTrackingPanel(state, layout.tracking);
   drawRecordPanel(state.record, layout.record);
   drawOverlayPanel(state.settings.overlay, state.overlayEdit, layout.overlay);
   drawStatsPanel(state.stats, layout.stats);
+}
+
+// Opens the Calibration panel with `--calibrate BOARD`; auto-capture as asked (always headless).
+void startCalibration(const ViewerOptions& options, FrameLoop& loop, cv::Size frameSize) {
+  if (options.calibrateBoard.empty()) return;
+  CalibrationState& c = loop.state.calibration;
+  c.active = true;
+  c.boardText = options.calibrateBoard;
+  c.autoCapture = options.headless || options.calibrateEvery > 0;
+  if (options.calibrateEvery > 0) c.autoCaptureEvery = options.calibrateEvery;
+  if (options.headless) c.autoCaptureEvery = std::max(1, options.calibrateEvery);
+  if (!options.calibrationOut.empty()) c.savePath = options.calibrationOut.string();
+  loop.calibration = std::make_unique<LiveCalibration>(frameSize, !options.headless, c);
 }
 
 void writeScreenshot(const fs::path& file, const cv::Mat& bgr) {
@@ -311,9 +382,11 @@ ViewerRunSummary runHeadless(const ViewerOptions& options, render::GlContext& co
   Session session = openSession(options, state);
   FrameLoop loop(session, state);
   const cv::Size frameSize = session.first.image.size();
+  startCalibration(options, loop, frameSize);
   const cv::Size canvasSize = options.ui ? options.canvasSize : frameSize;
   const std::optional<PanelLayout> layout =
-      options.ui ? std::optional<PanelLayout>(panelLayout(canvasSize)) : std::nullopt;
+      options.ui ? std::optional<PanelLayout>(panelLayout(canvasSize, state.calibration.active))
+                 : std::nullopt;
   const render::Viewport viewport = layout
                                         ? videoViewport(frameSize, layout->videoArea, canvasSize)
                                         : render::Viewport{0, 0, frameSize.width, frameSize.height};
@@ -332,11 +405,13 @@ ViewerRunSummary runHeadless(const ViewerOptions& options, render::GlContext& co
   cv::Mat lastCanvas;
   loop.process(std::move(session.first));
   for (;;) {
+    loop.updateCalibration();
     canvas.bind();
     glClearColor(0.1f, 0.1f, 0.1f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     loop.compositor.draw(loop.current.image, session.camera, loop.result, state.settings.overlay,
                          viewport, loop.label());
+    if (loop.calibration) loop.calibration->drawOverlay();
     if (imgui) {
       // ImGui lays windows out over two frames; the first frame is built twice so even a
       // one-frame run shows them settled.
@@ -360,6 +435,19 @@ ViewerRunSummary runHeadless(const ViewerOptions& options, render::GlContext& co
     writeScreenshot(options.screenshot, lastCanvas);
     summary.screenshot = options.screenshot;
   }
+  if (loop.calibration) {
+    CalibrationState& c = state.calibration;
+    loop.calibration->calibrateNow(c);
+    summary.calibrationCaptured = c.captured;
+    summary.calibrationRejected = c.rejected;
+    summary.calibration = c.result;
+    summary.calibrationMessage = c.message;
+    if (!options.calibrationOut.empty()) {
+      if (!c.result) throw Error(c.message);
+      CalibrationSession::save(*c.result, options.calibrationOut);
+      summary.calibrationFile = options.calibrationOut;
+    }
+  }
   summary.framesProcessed = loop.processed;
   summary.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   summary.sourceFps = state.source.fps;
@@ -376,6 +464,7 @@ ViewerRunSummary runWindow(const ViewerOptions& options, render::GlfwWindowConte
   FrameLoop loop(session, state);
   ImGuiSession imgui(window.window());
   const cv::Size frameSize = session.first.image.size();
+  startCalibration(options, loop, frameSize);
   if (!options.record.empty()) loop.startRecording(options.record, frameSize);
   if (!options.record.empty()) state.record.path = options.record.string();
   glfwShowWindow(window.window());
@@ -444,6 +533,7 @@ ViewerRunSummary runWindow(const ViewerOptions& options, render::GlfwWindowConte
       }
     }
     newFrame = false;
+    loop.updateCalibration();
 
     // The UI.
     imgui.newFrame();
@@ -453,7 +543,7 @@ ViewerRunSummary runWindow(const ViewerOptions& options, render::GlfwWindowConte
     const cv::Size fb = window.framebufferSize();
     std::optional<PanelLayout> layout;
     try {
-      layout = panelLayout(windowSize);
+      layout = panelLayout(windowSize, state.calibration.active);
     } catch (const Error&) {
       layout.reset();  // window too small for the columns: video only
     }
@@ -474,6 +564,7 @@ ViewerRunSummary runWindow(const ViewerOptions& options, render::GlfwWindowConte
     try {
       loop.compositor.draw(loop.current.image, session.camera, loop.result, state.settings.overlay,
                            videoViewport(frameSize, area, fb), loop.label());
+      if (loop.calibration) loop.calibration->drawOverlay();
     } catch (const Error& e) {
       if (state.settings.overlay.modelPath.empty()) throw;
       state.overlayEdit.message = e.what();

@@ -11,6 +11,7 @@
 
 #include "app/sources/FrameSourceFactory.hpp"
 #include "app/viewer/FrameTracker.hpp"
+#include "engine/calibration/CameraCalibrator.hpp"
 #include "engine/geometry/PinholeCamera.hpp"
 #include "render/context/GlContext.hpp"
 
@@ -30,6 +31,13 @@ struct ViewerOptions {
   int maxFrames = -1;  // stop after this many processed frames; -1: the whole source (headless)
                        // or until the window is closed
   cv::Size canvasSize{1280, 720};  // window size, and the headless canvas with --ui
+  // Live camera calibration (`--calibrate BOARD`): shows the Calibration panel; without --camera
+  // the overlay uses a 60-degree guess until the calibrated camera is put to use. Headless, every
+  // frame is examined and auto-captured (every calibrateEvery frames), calibration runs at the end
+  // and, with calibrationOut, the camera is written there (an error when calibration fails).
+  std::string calibrateBoard;
+  int calibrateEvery = 0;  // auto-capture every N frames; 0: off in the window, 1 headless
+  std::filesystem::path calibrationOut;
   FrameSourceOptions source;
   // Builds the live tracker (homography / 6-DOF) for the camera; used when --poses is not given.
   // Unset: sim: inputs replay their ground truth, other inputs show the video only.
@@ -44,6 +52,12 @@ struct ViewerRunSummary {
   double sourceFps = 0.0;
   std::string backend;  // "glfw-window", "osmesa", "egl-surfaceless"
   std::filesystem::path recording, trajectory, screenshot;  // empty when not written
+  // Live calibration (with calibrateBoard): views captured and rejected, and the headless
+  // end-of-run calibration (or why it failed).
+  int calibrationCaptured = 0, calibrationRejected = 0;
+  std::optional<CalibrationResult> calibration;
+  std::string calibrationMessage;
+  std::filesystem::path calibrationFile;  // the camera written (calibrationOut), else empty
 };
 
 // Runs the viewer. `context`: an existing current context to use (a GlfwWindowContext for the

@@ -8,6 +8,7 @@
 #include "app/viewer/OverlayPanel.hpp"
 #include "app/viewer/StatsHistory.hpp"
 #include "app/viewer/ViewerSettings.hpp"
+#include "engine/calibration/CameraCalibrator.hpp"
 
 namespace reftrack::app {
 
@@ -35,6 +36,29 @@ struct RecordState {
   std::string message;  // last result or error
 };
 
+// The Calibration panel (live camera calibration, engine CalibrationSession).
+struct CalibrationState {
+  bool active = false;  // the panel is shown (`view --calibrate BOARD`)
+  // Edited.
+  std::string boardText = "chessboard:9x6:0.025";  // same syntax as `calibrate --board`
+  bool autoCapture = false;
+  int autoCaptureEvery = 15;  // frames between automatic captures while the board is found
+  std::string savePath = "camera.yml";
+  bool applyBoardRequested = false, captureRequested = false, clearRequested = false;
+  bool calibrateRequested = false, saveRequested = false, useForTrackingRequested = false;
+  // Shown.
+  std::string board;  // the board in use
+  int captured = 0, rejected = 0;
+  std::string lastRejection;
+  double coverage = 0.0;    // fraction of coverage cells touched by captured corners
+  int currentCorners = -1;  // board corners found in the latest analysed frame; -1: none yet
+  bool capturePending = false;
+  bool calibrating = false;
+  std::optional<CalibrationResult> result;
+  bool usedForTracking = false;
+  std::string message;  // last action's result or error
+};
+
 struct ViewerState {
   SourceState source;
   ViewerSettings settings;
@@ -46,6 +70,7 @@ struct ViewerState {
   std::string lastStatus;
   StatsHistory stats;
   RecordState record;
+  CalibrationState calibration;
 };
 
 }  // namespace reftrack::app

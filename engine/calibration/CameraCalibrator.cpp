@@ -20,13 +20,17 @@ CameraCalibrator::CameraCalibrator(CalibrationBoard board, CalibrationParams par
   params_.check();
 }
 
-bool CameraCalibrator::addImage(const cv::Mat& image, const std::string& label) {
-  if (image.empty()) throw Error("image '" + label + "' is empty");
-  if (imageSize_.area() == 0) imageSize_ = image.size();
-  if (image.size() != imageSize_)
-    throw Error("image '" + label + "' is " + std::to_string(image.cols) + "x" +
-                std::to_string(image.rows) + " but the first image was " +
+void CameraCalibrator::checkImageSize(cv::Size size, const std::string& label) {
+  if (size.area() == 0) throw Error("image '" + label + "' is empty");
+  if (imageSize_.area() == 0) imageSize_ = size;
+  if (size != imageSize_)
+    throw Error("image '" + label + "' is " + std::to_string(size.width) + "x" +
+                std::to_string(size.height) + " but the first image was " +
                 std::to_string(imageSize_.width) + "x" + std::to_string(imageSize_.height));
+}
+
+bool CameraCalibrator::addImage(const cv::Mat& image, const std::string& label) {
+  checkImageSize(image.size(), label);
   ++examined_;
   auto obs = detector_.detect(image);
   if (!obs) {
@@ -35,6 +39,16 @@ bool CameraCalibrator::addImage(const cv::Mat& image, const std::string& label) 
   }
   views_.push_back({label, std::move(*obs)});
   return true;
+}
+
+void CameraCalibrator::addObservation(BoardObservation observation, cv::Size imageSize,
+                                      const std::string& label) {
+  checkImageSize(imageSize, label);
+  if (observation.imagePoints.size() != observation.objectPoints.size() ||
+      observation.imagePoints.empty())
+    throw Error("view '" + label + "': the board observation has no or mismatched corners");
+  ++examined_;
+  views_.push_back({label, std::move(observation)});
 }
 
 // Describes each view by where the board sits, how large it looks and how it is tilted (the

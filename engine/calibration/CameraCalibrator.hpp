@@ -43,6 +43,9 @@ class CameraCalibrator {
   // Detects the board in `image`; returns whether it was found. Every image must have the size
   // of the first one (throws reftrack::Error naming the label otherwise).
   bool addImage(const cv::Mat& image, const std::string& label);
+  // Adds a board already detected (BoardDetector) in an image of `imageSize`, under the same
+  // size rule as addImage; for callers that detect elsewhere (the live calibration session).
+  void addObservation(BoardObservation observation, cv::Size imageSize, const std::string& label);
 
   // Throws reftrack::Error when no view or too few views were found, or calibration fails.
   CalibrationResult calibrate() const;
@@ -53,6 +56,7 @@ class CameraCalibrator {
     BoardObservation observation;
   };
   std::vector<std::size_t> selectSpreadViews() const;
+  void checkImageSize(cv::Size size, const std::string& label);
 
   BoardDetector detector_;
   CalibrationParams params_;

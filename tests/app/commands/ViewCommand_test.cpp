@@ -11,6 +11,7 @@
 
 #include "CommandTestSupport.hpp"
 #include "TestPaths.hpp"
+#include "engine/geometry/PinholeCamera.hpp"
 #include "engine/geometry/TumTrajectory.hpp"
 
 using namespace reftrack;
@@ -176,4 +177,35 @@ TEST(ViewCommand, UsageErrorsExitWithTwo) {
   EXPECT_EQ(test::runReftrack("view --headless --input sim:static --frames 0", dir).exitCode, 2);
   EXPECT_EQ(test::runReftrack("view --input sim:static --camera /no/such.yml", dir).exitCode, 2);
   EXPECT_EQ(test::runReftrack("view --input sim:static --sim-size big", dir).exitCode, 2);
+}
+
+TEST(ViewCommand, HeadlessCalibrationWritesTheCamera) {
+  const auto data = test::sharedDataDir();
+  if (!data) GTEST_SKIP() << "../shared/data is absent";
+  const fs::path dir = test::freshTempDir("ViewCommand_Calibrate");
+  const auto run = test::runReftrack(
+      "view --headless --input '" + (*data / "chessboard-calib" / "left*.jpg").string() +
+          "' --calibrate chessboard:9x6:0.025 --calibration-out " + (dir / "camera.yml").string(),
+      dir);
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_NE(run.out.find("calibration: 13 views captured, 0 rejected"), std::string::npos)
+      << run.out;
+  EXPECT_NE(run.out.find("RMS reprojection error"), std::string::npos) << run.out;
+  // The same images through `calibrate` give fx 532.8 (CameraCalibrator_test); 1% as there.
+  EXPECT_NEAR(PinholeCamera::load(dir / "camera.yml").fx(), 532.8, 0.01 * 532.8);
+  // A malformed board is a usage error; too few views to calibrate is a clear error.
+  EXPECT_EQ(test::runReftrack("view --headless --input sim:static --calibrate chessboard:9", dir)
+                .exitCode,
+            2);
+  const auto few = test::runReftrack(
+      "view --headless --input " + (*data / "chessboard-calib" / "left01.jpg").string() +
+          " --calibrate chessboard:9x6:0.025 --calibration-out " + (dir / "few.yml").string(),
+      dir);
+  // The run itself completes (its progress line is on stderr too), then calibration fails.
+  EXPECT_EQ(few.exitCode, 1) << few.err;
+  EXPECT_NE(few.err.find("reftrack view: error: calibration failed: calibration needs at least 4 "
+                         "captured views of the board, have 1"),
+            std::string::npos)
+      << few.err;
+  EXPECT_FALSE(fs::exists(dir / "few.yml"));
 }

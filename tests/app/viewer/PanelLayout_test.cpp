@@ -31,3 +31,18 @@ TEST(PanelLayout, VideoViewportIsLetterboxedInTheArea) {
   const render::Viewport top = videoViewport({100, 100}, {0, 0, 100, 100}, {100, 300});
   EXPECT_EQ(top.y, 200);
 }
+
+TEST(PanelLayout, CalibrationTakesTheRightColumnAboveStats) {
+  const PanelLayout plain = panelLayout({1280, 720});
+  EXPECT_TRUE(plain.calibration.empty());
+  const PanelLayout l = panelLayout({1280, 720}, true);
+  EXPECT_EQ(l.calibration.x, 1280.0f - l.calibration.width);
+  EXPECT_EQ(l.calibration.y, 0.0f);
+  EXPECT_EQ(l.stats.y, l.calibration.y + l.calibration.height);
+  EXPECT_EQ(l.stats.y + l.stats.height, 720.0f);
+  // Overlay shares the left column with Tracking, between Source and Record, without overlap.
+  EXPECT_EQ(l.overlay.x, 0.0f);
+  EXPECT_EQ(l.tracking.y + l.tracking.height, l.overlay.y);
+  EXPECT_EQ(l.overlay.y + l.overlay.height, l.record.y);
+  EXPECT_EQ(l.videoArea, plain.videoArea);
+}

@@ -1,5 +1,6 @@
 // runViewer headless: one recorded frame per processed frame, a replayed trajectory written back
-// unchanged, screenshots of the canvas, and clean errors before any output is written.
+// unchanged, screenshots of the canvas, clean errors before any output is written, and live
+// calibration (auto-capture, calibrate, camera.yml) end to end.
 #include "app/viewer/ViewerApp.hpp"
 
 #include <gtest/gtest.h>
@@ -10,6 +11,7 @@
 #include "TestPaths.hpp"
 #include "app/simulator/SceneSimulator.hpp"
 #include "app/simulator/SimulationWriter.hpp"
+#include "engine/calibration/SyntheticBoardViews.hpp"
 #include "engine/core/Error.hpp"
 #include "engine/geometry/TumTrajectory.hpp"
 
@@ -101,4 +103,82 @@ TEST(ViewerApp, BadInputFailsBeforeWritingOutputs) {
   o.screenshot = dir / "shot.jpg";
   EXPECT_THROW(runViewer(o), Error);
   EXPECT_TRUE(fs::is_empty(dir));
+}
+
+namespace {
+
+// Fifteen synthetic chessboard views (known K, see SyntheticBoardViews.hpp) as PNG files.
+fs::path writeBoardFolder(const fs::path& dir, int count) {
+  const CalibrationBoard board = CalibrationBoard::parse("chessboard:9x6:0.025");
+  Eigen::Matrix3d K;
+  K << 620.0, 0, 322.5, 0, 610.0, 236.8, 0, 0, 1;
+  const cv::Mat texture = test::chessboardTexture(board, 64);
+  const std::vector<RigidPose> poses = test::variedBoardPoses(board);
+  fs::create_directories(dir);
+  for (int i = 0; i < count; ++i) {
+    char name[32];
+    std::snprintf(name, sizeof name, "view%02d.png", i);
+    cv::imwrite((dir / name).string(),
+                test::renderBoardView(board, texture, 64, K, {640, 480}, poses[i], i));
+  }
+  return dir;
+}
+
+}  // namespace
+
+TEST(ViewerApp, HeadlessCalibrationCapturesCalibratesAndWritesTheCamera) {
+  const fs::path dir = test::freshTempDir("ViewerApp_Calibrate");
+  ViewerOptions o;
+  o.input = writeBoardFolder(dir / "shots", 15).string();
+  o.headless = true;
+  o.calibrateBoard = "chessboard:9x6:0.025";  // no --camera: K is guessed until calibrated
+  o.calibrationOut = dir / "camera.yml";
+  o.screenshot = dir / "last.png";
+  const ViewerRunSummary s = runViewer(o);
+  EXPECT_EQ(s.framesProcessed, 15);
+  EXPECT_EQ(s.calibrationCaptured, 15);  // every view distinct, every board found
+  EXPECT_EQ(s.calibrationRejected, 0);
+  ASSERT_TRUE(s.calibration) << s.calibrationMessage;
+  EXPECT_EQ(s.calibrationFile, o.calibrationOut);
+  const PinholeCamera written = PinholeCamera::load(o.calibrationOut);
+  EXPECT_EQ(written.fx(), s.calibration->camera.fx());
+  // The viewer calibrates with the command's defaults (tangential terms free), which over these
+  // 15 distortion-free views moves cy by about 0.5% (CameraCalibrator_test); 1% bounds all four.
+  EXPECT_NEAR(written.fx(), 620.0, 0.01 * 620.0);
+  EXPECT_NEAR(written.fy(), 610.0, 0.01 * 610.0);
+  EXPECT_NEAR(written.cx(), 322.5, 0.01 * 322.5);
+  EXPECT_NEAR(written.cy(), 236.8, 0.01 * 236.8);
+  EXPECT_LT(s.calibration->rmsPx, 0.3);
+  // The coverage overlay is drawn over the video: the centre cell (covered by every view) is
+  // tinted green / amber where the last input frame is pure grey (G - (R + B) / 2 = 0).
+  const cv::Mat shot = cv::imread(o.screenshot.string());
+  const cv::Mat input = cv::imread((dir / "shots" / "view14.png").string());
+  ASSERT_EQ(shot.size(), cv::Size(640, 480));
+  auto greenness = [](const cv::Mat& image) {
+    const cv::Scalar m = cv::mean(image(cv::Rect(320, 240, 80, 80)));
+    return m[1] - 0.5 * (m[0] + m[2]);
+  };
+  std::printf("centre cell G - (R + B) / 2: %.1f with the overlay, %.1f in the frame\n",
+              greenness(shot), greenness(input));
+  EXPECT_GT(greenness(shot), greenness(input) + 10.0);
+}
+
+TEST(ViewerApp, HeadlessCalibrationFailureIsAClearError) {
+  const fs::path dir = test::freshTempDir("ViewerApp_CalibrateFail");
+  ViewerOptions o;
+  o.input = writeBoardFolder(dir / "shots", 2).string();
+  o.headless = true;
+  o.calibrateBoard = "chessboard:9x6:0.025";
+  o.calibrationOut = dir / "camera.yml";
+  try {
+    runViewer(o);
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("at least 4"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(fs::exists(o.calibrationOut));
+  o.calibrateBoard.clear();  // --calibration-out without --calibrate
+  EXPECT_THROW(runViewer(o), Error);
+  o.calibrateBoard = "chessboard:nonsense";
+  EXPECT_THROW(runViewer(o), Error);
 }
