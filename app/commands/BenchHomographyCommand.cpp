@@ -87,6 +87,10 @@ CommandRegistration registerBenchHomographyCommand(CLI::App& parent) {
               std::printf("%dx%d, %d frames\n", r.size.width, r.size.height, r.frames);
               printSide(r.tracker, r.frames);
               printSide(r.baseline, r.frames);
+              std::printf("  %s stage medians (ms):", r.tracker.name.c_str());
+              for (const auto& [stage, ms] : r.tracker.stageMs)
+                std::printf(" %s %.3f;", stage.c_str(), finiteMedian(ms));
+              std::printf("\n");
               const double speed =
                   finiteMedian(r.baseline.milliseconds) / finiteMedian(r.tracker.milliseconds);
               const double accuracy =

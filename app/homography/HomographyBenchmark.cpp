@@ -81,6 +81,10 @@ BenchmarkResult runHomographyBenchmark(const BenchmarkOptions& options) {
     out.tracker.cornerErrorPx.push_back(r.tracked ? frameCornerError(r.H, trueH, options.size)
                                                   : nan);
     out.tracker.registered += r.tracked ? 1 : 0;
+    for (size_t i = 0; i < r.stageMs.size(); ++i) {
+      if (out.tracker.stageMs.size() <= i) out.tracker.stageMs.push_back({r.stageMs[i].first, {}});
+      out.tracker.stageMs[i].second.push_back(r.stageMs[i].second);
+    }
     if (!r.tracked) out.tracker.failures.push_back("frame " + std::to_string(k) + ": " + r.failure);
 
     t0 = std::chrono::steady_clock::now();

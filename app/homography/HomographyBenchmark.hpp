@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <opencv2/core.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "engine/config/TrackerParams.hpp"
@@ -31,6 +32,8 @@ struct BenchmarkSide {
   std::vector<double> cornerErrorPx;  // per frame; NaN when the frame was not registered
   int registered = 0;
   std::vector<std::string> failures;  // "frame k: reason" of unregistered frames
+  // Per named stage (in the tracker's order), milliseconds per frame (the tracker only).
+  std::vector<std::pair<std::string, std::vector<double>>> stageMs;
 };
 
 struct BenchmarkResult {

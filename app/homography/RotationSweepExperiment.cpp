@@ -37,6 +37,7 @@ void RotationSweepOptions::check() const {
     throw Error("rotation sweep: maxAngleDeg must be in [0, 90]");
   if (!(stepDeg > 0.0)) throw Error("rotation sweep: stepDeg must be positive");
   if (trials < 1) throw Error("rotation sweep: trials must be at least 1");
+  if (!(successErrorPx > 0.0)) throw Error("rotation sweep: successErrorPx must be positive");
   if (!(noiseSigma >= 0.0 && noiseSigma <= 100.0))
     throw Error("rotation sweep: noiseSigma must be in [0, 100]");
   params.check();
@@ -90,10 +91,14 @@ std::vector<RotationStep> runRotationSweep(const RotationSweepOptions& options) 
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
                 .count());
         if (r.tracked) {
-          ++step.successes;
-          // NaN when no annotation lies inside the frame (nothing to place, nothing to score).
+          // NaN when no annotation lies inside the frame: nothing to check, so not a success.
           const double e = meanTransferDeviation(r.H, trueH[side], annotations, options.size);
-          if (!std::isnan(e)) errors.push_back(e);
+          if (e < options.successErrorPx) {
+            ++step.successes;
+            errors.push_back(e);
+          } else {
+            ++step.trackedButWrong;
+          }
         }
       } catch (const Error&) {
         // A reference without enough corners cannot be registered: the trial fails.

@@ -4,7 +4,9 @@
 // centre (alternately left and right) away from reference view A; each trial pairs a freshly
 // noised reference with a freshly noised rotated frame and registers them cold (unguided), as
 // the paper did. The true homography K R K^-1 gives exact annotation ground truth: the error is
-// the mean deviation of a grid of reference annotations that lie inside the frame.
+// the mean deviation of a grid of reference annotations that lie inside the frame. A trial
+// succeeds when it is tracked and that error is small; tracked-but-wrong trials are counted
+// apart.
 // Rendering needs a current GL context (render::createHeadlessContext()).
 #include <cstdint>
 #include <opencv2/core.hpp>
@@ -22,6 +24,9 @@ struct RotationSweepOptions {
   int trials = 100;  // per angle
   double noiseSigma = 2.0;
   std::uint64_t seed = 1;
+  // A tracked trial counts as a success only with an annotation error below this (pixels);
+  // above it (or with no annotation inside the frame to check) it is "tracked but wrong".
+  double successErrorPx = 2.0;
   TrackerParams params;
   void check() const;  // throws reftrack::Error naming the bad field
 };
@@ -30,7 +35,8 @@ struct RotationStep {
   double angleDeg = 0.0;
   double overlap = 0.0;  // fraction of the frame that sees the reference (mean of both pans)
   int trials = 0;
-  int successes = 0;
+  int successes = 0;           // tracked and annotation error < successErrorPx
+  int trackedButWrong = 0;     // tracked, but the error is larger (a wrong registration)
   double meanErrorPx = 0.0;    // annotation error over the successful trials (NaN if none)
   double medianErrorPx = 0.0;  // (NaN if none)
   double maxErrorPx = 0.0;

@@ -16,7 +16,7 @@ struct CornerParams {
   bool detectAtPaperScale = true;
   int gridColumns = 4;  // corners are spread over a gridColumns x gridRows grid
   int gridRows = 3;
-  int subPixelHalfWindow = 3;  // cv::cornerSubPix half window (pixels)
+  int subPixelHalfWindow = 3;  // sub-pixel refinement half window (pixels)
   int contrastWindow = 15;     // RMS contrast window around each corner (paper Fig. 7: 15x15)
 
   // Corner count for an image of this size (countAt320x240 scaled with the area).

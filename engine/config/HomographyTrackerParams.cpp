@@ -7,12 +7,15 @@ namespace reftrack {
 void HomographyTrackerParams::check() const {
   requireFiniteInRange("homography.guided_search_half_size_px", guidedSearchHalfSizePx, 0.5,
                        10000.0);
+  requireFiniteInRange("homography.reacquire_corner_factor", reacquireCornerFactor, 1.0, 16.0);
+  requireFiniteInRange("homography.frame_corner_factor", frameCornerFactor, 1.0, 16.0);
 }
 
 void HomographyTrackerParams::write(cv::FileStorage& fs) const {
   fs << "guided_search_half_size_px" << guidedSearchHalfSizePx << "frame_to_frame_prediction"
      << (frameToFramePrediction ? "true" : "false") << "reacquire_whole_image"
-     << (reacquireWholeImage ? "true" : "false");
+     << (reacquireWholeImage ? "true" : "false") << "reacquire_corner_factor"
+     << reacquireCornerFactor << "frame_corner_factor" << frameCornerFactor;
 }
 
 void HomographyTrackerParams::read(const cv::FileNode& node) {
@@ -20,6 +23,8 @@ void HomographyTrackerParams::read(const cv::FileNode& node) {
   readConfigValue(node, s, "guided_search_half_size_px", guidedSearchHalfSizePx);
   readConfigValue(node, s, "frame_to_frame_prediction", frameToFramePrediction);
   readConfigValue(node, s, "reacquire_whole_image", reacquireWholeImage);
+  readConfigValue(node, s, "reacquire_corner_factor", reacquireCornerFactor);
+  readConfigValue(node, s, "frame_corner_factor", frameCornerFactor);
   check();
 }
 

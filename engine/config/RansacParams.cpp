@@ -21,7 +21,8 @@ void RansacParams::write(cv::FileStorage& fs) const {
      << "early_accept_min_iterations" << earlyAcceptMinIterations << "min_sample_spacing_px"
      << minSampleSpacingPx << "min_determinant" << minDeterminant << "min_inlier_ratio"
      << minInlierRatio << "min_inliers" << minInliers << "inlier_threshold_px" << inlierThresholdPx
-     << "refine" << (refine ? "true" : "false") << "seed" << seed;
+     << "refine" << (refine ? "true" : "false") << "seed" << seed << "progressive_sampling"
+     << (progressiveSampling ? "true" : "false");
 }
 
 void RansacParams::read(const cv::FileNode& node) {
@@ -36,6 +37,7 @@ void RansacParams::read(const cv::FileNode& node) {
   readConfigValue(node, s, "inlier_threshold_px", inlierThresholdPx);
   readConfigValue(node, s, "refine", refine);
   readConfigValue(node, s, "seed", seed);
+  readConfigValue(node, s, "progressive_sampling", progressiveSampling);
   check();
 }
 

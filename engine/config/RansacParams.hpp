@@ -1,5 +1,5 @@
 #pragma once
-// RansacParams: the paper's robust-homography heuristics (Sec. 7.3, SPEC §5). Sample spacing is
+// RansacParams: the paper's robust-homography heuristics (Sec. 7.3, SPEC §5). The sample spacing
 // and the inlier threshold are given at 320x240 and scale with the image.
 #include <opencv2/core.hpp>
 
@@ -16,6 +16,9 @@ struct RansacParams {
   double inlierThresholdPx = 1.0;     // inlier transfer error (pixels at 320x240)
   bool refine = true;                 // non-linear refinement of transfer error on inliers
   int seed = 1;                       // random generator seed (reproducible runs)
+  // Draw samples from the best-ranked matches first (PROSAC) when match scores are given; the
+  // iteration cap is unchanged. false: uniform sampling as in the paper.
+  bool progressiveSampling = true;
 
   void check() const;
   void write(cv::FileStorage& fs) const;

@@ -8,6 +8,7 @@
 #include "engine/config/ResolutionScale.hpp"
 #include "engine/core/Error.hpp"
 #include "engine/features/RmsContrast.hpp"
+#include "engine/features/SubPixelCorner.hpp"
 
 namespace reftrack {
 
@@ -87,16 +88,41 @@ std::vector<Corner> CornerDetector::detect(const cv::Mat& image) const {
 
   const int half = params_.blockSize / 2;
   const int border = std::max(half + 2, 3);
-  std::vector<cv::KeyPoint> keypoints;
-  for (int threshold = params_.fastThreshold;; threshold /= 2) {
-    // No FAST non-maximum suppression: its strict test drops pixel-aligned corners whose
-    // neighbours tie; the Harris ranking with minimum spacing below does the suppression.
+  // Reused between calls: FAST without suppression returns thousands of keypoints on textured
+  // frames, and a fresh vector each time costs more in page faults than FAST itself.
+  thread_local std::vector<cv::KeyPoint> keypoints, fewer;
+  // No FAST non-maximum suppression: its strict test drops pixel-aligned corners whose
+  // neighbours tie; the Harris ranking with minimum spacing below does the suppression. The
+  // threshold is halved while there are fewer than 2 candidates per corner wanted, and raised
+  // while there are more than kMaxCandidatesPerCorner (scoring thousands of candidates on a
+  // richly textured frame costs more than the FAST passes), keeping at least 2 per corner. The
+  // next call starts from the threshold this one settled on (consecutive frames are alike).
+  constexpr int kMaxCandidatesPerCorner = 12;
+  int threshold = thresholdHint_ > 0 ? thresholdHint_ : params_.fastThreshold;
+  cv::FAST(work, keypoints, threshold, false);
+  while (static_cast<int>(keypoints.size()) < 2 * count && threshold > 4) {
+    threshold /= 2;
     cv::FAST(work, keypoints, threshold, false);
-    if (static_cast<int>(keypoints.size()) >= 2 * count || threshold <= 4) break;
   }
+  while (static_cast<int>(keypoints.size()) > kMaxCandidatesPerCorner * count && threshold < 120) {
+    threshold = threshold * 3 / 2;
+    cv::FAST(work, fewer, threshold, false);
+    if (static_cast<int>(fewer.size()) < 2 * count) break;
+    std::swap(keypoints, fewer);
+  }
+  thresholdHint_ = threshold;
 
+  // Only the strongest candidate of each cell of side minDist / sqrt(2) (on the working level)
+  // can be chosen first there (two points in one cell are closer than minDist), so the others
+  // are dropped before sorting: FAST fires on several neighbouring pixels of each corner.
+  const double minDist = params_.minDistanceFor(size);
+  const double bucket = std::max(1.0, minDist / toFull / std::sqrt(2.0));
+  const int bucketCols = static_cast<int>(work.cols / bucket) + 1;
+  const int bucketRows = static_cast<int>(work.rows / bucket) + 1;
+  thread_local std::vector<int> bestInBucket;
+  bestInBucket.assign(static_cast<size_t>(bucketCols * bucketRows), -1);
   std::vector<Candidate> candidates;
-  candidates.reserve(keypoints.size());
+  candidates.reserve(std::min<size_t>(keypoints.size(), bestInBucket.size()));
   float best = 0.0f;
   for (const cv::KeyPoint& kp : keypoints) {
     const int x = static_cast<int>(kp.pt.x), y = static_cast<int>(kp.pt.y);
@@ -104,7 +130,14 @@ std::vector<Corner> CornerDetector::detect(const cv::Mat& image) const {
     const float r = harrisAt(work, x, y, half, params_.harrisK);
     if (r <= 0.0f) continue;
     best = std::max(best, r);
-    candidates.push_back({cv::Point2f(x * toFull, y * toFull), r});
+    int& slot = bestInBucket[static_cast<size_t>(static_cast<int>(y / bucket) * bucketCols +
+                                                 static_cast<int>(x / bucket))];
+    if (slot < 0) {
+      slot = static_cast<int>(candidates.size());
+      candidates.push_back({cv::Point2f(x * toFull, y * toFull), r});
+    } else if (r > candidates[static_cast<size_t>(slot)].response) {
+      candidates[static_cast<size_t>(slot)] = {cv::Point2f(x * toFull, y * toFull), r};
+    }
   }
   std::sort(candidates.begin(), candidates.end(),
             [](const Candidate& a, const Candidate& b) { return a.response > b.response; });
@@ -112,7 +145,6 @@ std::vector<Corner> CornerDetector::detect(const cv::Mat& image) const {
 
   // Spread: a per-cell quota on the coarse grid in the first pass, then the strongest of the
   // rest; both passes keep the minimum spacing (checked on a fine occupancy grid).
-  const double minDist = params_.minDistanceFor(size);
   const double cellSize = std::max(1.0, minDist);
   const int occCols = static_cast<int>(size.width / cellSize) + 1;
   const int occRows = static_cast<int>(size.height / cellSize) + 1;
@@ -156,24 +188,19 @@ std::vector<Corner> CornerDetector::detect(const cv::Mat& image) const {
   if (chosen.empty()) return {};
 
   const int win = params_.subPixelHalfWindow;
-  const cv::TermCriteria until(cv::TermCriteria::EPS + cv::TermCriteria::COUNT, 10, 0.01);
   if (level > 0) {
     // Candidates from a pyramid level are up to 2^level px off: refine them on that level first
     // (cheap), so that the full-resolution pass starts within a pixel and keeps the base window.
-    // Measured at 640x480: 0.3 ms instead of 0.9 ms for the doubled window over 200 corners.
-    std::vector<cv::Point2f> coarse(chosen.size());
-    for (size_t i = 0; i < chosen.size(); ++i) coarse[i] = chosen[i] * (1.0f / toFull);
-    cv::cornerSubPix(work, coarse, cv::Size(win, win), cv::Size(-1, -1), until);
-    for (size_t i = 0; i < chosen.size(); ++i) chosen[i] = coarse[i] * toFull;
-    cv::cornerSubPix(gray, chosen, cv::Size(win, win), cv::Size(-1, -1), until);
-  } else {
-    cv::cornerSubPix(gray, chosen, cv::Size(win, win), cv::Size(-1, -1), until);
+    for (cv::Point2f& c : chosen) c *= 1.0f / toFull;
+    refineCornersSubPixel(work, chosen, win);
+    for (cv::Point2f& c : chosen) c *= toFull;
   }
+  refineCornersSubPixel(gray, chosen, win);
   std::vector<Corner> corners;
   corners.reserve(chosen.size());
   for (size_t i = 0; i < chosen.size(); ++i) {
     const cv::Point2f p = chosen[i];
-    // cornerSubPix can wander off a weak corner; drop points that left the image.
+    // Refinement can move a weak corner off the image; drop points that left it.
     if (!(p.x >= 0 && p.y >= 0 && p.x <= size.width - 1 && p.y <= size.height - 1)) continue;
     corners.push_back(
         {p, chosenResponse[i], static_cast<float>(rmsContrast(gray, p, params_.contrastWindow))});

@@ -1,6 +1,8 @@
 #include "engine/homography/HomographyDlt.hpp"
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
 
 namespace reftrack {
@@ -81,6 +83,70 @@ std::optional<cv::Matx33d> homographyDlt(const std::vector<cv::Point2f>& src,
   const double norm = cv::norm(H);
   if (!(norm > 0) || !std::isfinite(norm)) return std::nullopt;
   H *= std::abs(H(2, 2)) > 1e-9 * norm ? 1.0 / H(2, 2) : 1.0 / norm;
+  return H;
+}
+
+namespace {
+
+// Twice the area of triangle abc over the squared length of its longest side: ~0 when collinear.
+double triangleShape(cv::Point2d a, cv::Point2d b, cv::Point2d c) {
+  const cv::Point2d ab = b - a, ac = c - a, bc = c - b;
+  const double longest = std::max({ab.dot(ab), ac.dot(ac), bc.dot(bc)});
+  return longest > 0 ? std::abs(ab.x * ac.y - ab.y * ac.x) / longest : 0.0;
+}
+
+bool nearlyCollinear(const cv::Point2d p[4]) {
+  // A triangle flatter than ~0.6 degrees at its widest angle leaves H badly determined.
+  constexpr double kMinShape = 0.01;
+  return triangleShape(p[0], p[1], p[2]) < kMinShape ||
+         triangleShape(p[0], p[1], p[3]) < kMinShape ||
+         triangleShape(p[0], p[2], p[3]) < kMinShape || triangleShape(p[1], p[2], p[3]) < kMinShape;
+}
+
+}  // namespace
+
+std::optional<cv::Matx33d> homographyFromFourPoints(const std::vector<cv::Point2f>& src,
+                                                    const std::vector<cv::Point2f>& dst,
+                                                    const int sample[4]) {
+  cv::Point2d a[4], b[4];
+  for (int k = 0; k < 4; ++k) {
+    const size_t i = static_cast<size_t>(sample[k]);
+    if (i >= src.size() || i >= dst.size()) return std::nullopt;
+    a[k] = cv::Point2d(src[i].x, src[i].y);
+    b[k] = cv::Point2d(dst[i].x, dst[i].y);
+    if (!std::isfinite(a[k].x) || !std::isfinite(a[k].y) || !std::isfinite(b[k].x) ||
+        !std::isfinite(b[k].y))
+      return std::nullopt;
+  }
+  if (nearlyCollinear(a) || nearlyCollinear(b)) return std::nullopt;
+  // Normalise each set (centroid to the origin, mean distance sqrt(2)) for conditioning.
+  const auto normalise = [](cv::Point2d p[4]) {
+    const cv::Point2d c = (p[0] + p[1] + p[2] + p[3]) * 0.25;
+    double d = 0;
+    for (int k = 0; k < 4; ++k) d += std::hypot(p[k].x - c.x, p[k].y - c.y);
+    const double s = d > 1e-12 ? 4.0 * std::sqrt(2.0) / d : 1.0;
+    for (int k = 0; k < 4; ++k) p[k] = (p[k] - c) * s;
+    return cv::Matx33d(s, 0, -s * c.x, 0, s, -s * c.y, 0, 0, 1);
+  };
+  const cv::Matx33d T1 = normalise(a), T2 = normalise(b);
+  Eigen::Matrix<double, 8, 8> A;
+  Eigen::Matrix<double, 8, 1> rhs;
+  for (int k = 0; k < 4; ++k) {
+    const double x = a[k].x, y = a[k].y, u = b[k].x, v = b[k].y;
+    A.row(2 * k) << x, y, 1, 0, 0, 0, -u * x, -u * y;
+    A.row(2 * k + 1) << 0, 0, 0, x, y, 1, -v * x, -v * y;
+    rhs(2 * k) = u;
+    rhs(2 * k + 1) = v;
+  }
+  const Eigen::PartialPivLU<Eigen::Matrix<double, 8, 8>> lu(A);
+  if (!(std::abs(lu.determinant()) > 1e-12)) return std::nullopt;
+  const Eigen::Matrix<double, 8, 1> h = lu.solve(rhs);
+  const cv::Matx33d Hn(h(0), h(1), h(2), h(3), h(4), h(5), h(6), h(7), 1.0);
+  cv::Matx33d H = T2.inv() * Hn * T1;
+  if (!(std::abs(H(2, 2)) > 1e-12)) return std::nullopt;
+  H *= 1.0 / H(2, 2);
+  for (int k = 0; k < 9; ++k)
+    if (!std::isfinite(H.val[k])) return std::nullopt;
   return H;
 }
 

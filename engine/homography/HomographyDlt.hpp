@@ -16,6 +16,14 @@ std::optional<cv::Matx33d> homographyDlt(const std::vector<cv::Point2f>& src,
                                          const std::vector<cv::Point2f>& dst,
                                          const std::vector<int>& indices = {});
 
+// The exact homography of 4 correspondences src[sample[k]] -> dst[sample[k]] (h33 = 1), from the
+// 8x8 linear system in normalised coordinates: the minimal solver of RANSAC, ~20x cheaper than
+// the general DLT's 9x9 eigen-decomposition. nullopt when three of the points (in either image)
+// are nearly collinear or the system is singular.
+std::optional<cv::Matx33d> homographyFromFourPoints(const std::vector<cv::Point2f>& src,
+                                                    const std::vector<cv::Point2f>& dst,
+                                                    const int sample[4]);
+
 // H applied to a point (nullopt-free: returns NaN when the point maps to infinity).
 cv::Point2d transferPoint(const cv::Matx33d& H, cv::Point2d p);
 // Euclidean transfer error |H src - dst| in pixels.

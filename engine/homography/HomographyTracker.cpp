@@ -34,82 +34,123 @@ double lap(std::chrono::steady_clock::time_point& t) {
 
 }  // namespace
 
+namespace {
+
+const TrackerParams& checked(const TrackerParams& p) {
+  p.check();
+  return p;
+}
+
+// The tracker applies the 35% rule to the reference corners the frame can see (the paper's
+// test), not to the correlation matches: unguided whole-image matching of a barely overlapping
+// frame yields many more false matches than visible corners.
+RansacParams frameFitParams(const RansacParams& p) {
+  RansacParams r = p;
+  r.minInlierRatio = 0.0;
+  return r;
+}
+
+// The corner parameters with the count scaled by `factor` (>= 1).
+CornerParams scaledCount(const CornerParams& corners, double factor) {
+  CornerParams c = corners;
+  c.countAt320x240 = static_cast<int>(std::lround(c.countAt320x240 * std::max(1.0, factor)));
+  return c;
+}
+
+}  // namespace
+
+HomographyTracker::ReferenceSet HomographyTracker::referenceSet(const cv::Mat& gray,
+                                                                const CornerDetector& detector,
+                                                                int halfWindow) {
+  ReferenceSet r{detector.detect(gray), {}, NccPatches(halfWindow)};
+  r.points = positionsOf(r.corners);
+  r.patches = NccPatches::square(gray, r.points, halfWindow);
+  return r;
+}
+
 HomographyTracker::HomographyTracker(const cv::Mat& reference, const TrackerParams& params)
-    : params_(params),
-      detector_(params.corners),
+    : params_(checked(params)),
+      detector_(params_.corners),
+      frameDetector_(scaledCount(params_.corners, params_.homography.frameCornerFactor)),
+      reacquireDetector_(scaledCount(params_.corners, params_.homography.reacquireCornerFactor)),
       matcher_(params.correlation),
-      estimator_(params.ransac),
-      refPatches_(params.correlation.halfWindow),
+      estimator_(frameFitParams(params_.ransac)),
       prevPatches_(params.correlation.halfWindow) {
-  params_.check();
   if (reference.empty()) throw Error("homography tracker: the reference image is empty");
   refGray_ = toGray8(reference).clone();
-  refCorners_ = detector_.detect(refGray_);
-  if (refCorners_.size() < 8)
-    throw Error("homography tracker: only " + std::to_string(refCorners_.size()) +
+  const int half = params_.correlation.halfWindow;
+  ref_ = referenceSet(refGray_, detector_, half);
+  if (ref_.corners.size() < 8)
+    throw Error("homography tracker: only " + std::to_string(ref_.corners.size()) +
                 " corners in the reference image (at least 8 needed; is it textured?)");
-  refPoints_ = positionsOf(refCorners_);
-  refPatches_ = NccPatches::square(refGray_, refPoints_, params_.correlation.halfWindow);
+  reacquireRef_ = reacquireDetector_.params().countAt320x240 == params_.corners.countAt320x240
+                      ? ref_
+                      : referenceSet(refGray_, reacquireDetector_, half);
 }
 
 void HomographyTracker::reset() {
   lastH_.reset();
+  coastH_.reset();
   prevPoints_.clear();
 }
 
-std::optional<cv::Matx33d> HomographyTracker::predict(const std::vector<cv::Point2f>& points,
+std::optional<cv::Matx33d> HomographyTracker::predict(const cv::Matx33d& base, bool coasting,
+                                                      const std::vector<cv::Point2f>& points,
                                                       const NccPatches& patches) const {
-  if (!lastH_) return std::nullopt;
-  if (!params_.homography.frameToFramePrediction || prevPoints_.empty()) return lastH_;
+  if (!params_.homography.frameToFramePrediction || prevPoints_.empty()) return base;
   const double s = resolutionScale(refGray_.size());
   const std::vector<CornerMatch> m = matcher_.match(prevPoints_, prevPatches_, points, patches,
                                                     params_.correlation.searchHalfWidthPx * s,
                                                     params_.correlation.searchHalfHeightPx * s);
   std::vector<cv::Point2f> a, b;
+  std::vector<float> score;
   for (const CornerMatch& c : m) {
     a.push_back(prevPoints_[static_cast<size_t>(c.first)]);
     b.push_back(points[static_cast<size_t>(c.second)]);
+    score.push_back(c.score);
   }
   RansacParams rp = params_.ransac;
   rp.refine = false;  // the prediction only needs to land within the guided search window
-  const HomographyEstimate f2f = RobustHomographyEstimator(rp).estimate(a, b, refGray_.size());
-  if (!f2f.success) return lastH_;
-  return f2f.H * *lastH_;
+  const HomographyEstimate f2f =
+      RobustHomographyEstimator(rp).estimate(a, b, refGray_.size(), score);
+  // Without a frame-to-frame homography a coasted registration has nothing left to carry it.
+  if (!f2f.success) return coasting ? std::nullopt : std::optional<cv::Matx33d>(base);
+  return f2f.H * base;
 }
 
-HomographyTrackResult HomographyTracker::track(const cv::Mat& frame) {
-  HomographyTrackResult out;
+HomographyTracker::Attempt HomographyTracker::attempt(const cv::Mat& gray,
+                                                      const CornerDetector& detector,
+                                                      const ReferenceSet& ref,
+                                                      const std::optional<cv::Matx33d>& base,
+                                                      bool coasting, double stageMs[4]) {
+  Attempt a;
   auto clock = std::chrono::steady_clock::now();
-  const cv::Mat gray = toGray8(frame);
-  if (gray.size() != refGray_.size())
-    throw Error("homography tracker: frame is " + std::to_string(gray.cols) + "x" +
-                std::to_string(gray.rows) + " but the reference is " +
-                std::to_string(refGray_.cols) + "x" + std::to_string(refGray_.rows));
-  const std::vector<Corner> corners = detector_.detect(gray);
-  out.corners = static_cast<int>(corners.size());
-  std::vector<cv::Point2f> points = positionsOf(corners);
-  NccPatches patches = NccPatches::square(gray, points, params_.correlation.halfWindow);
-  out.stageMs.emplace_back("corners", lap(clock));
+  a.points = positionsOf(detector.detect(gray));
+  a.patches = NccPatches::square(gray, a.points, params_.correlation.halfWindow);
+  stageMs[0] += lap(clock);
 
-  const std::optional<cv::Matx33d> prediction = predict(points, patches);
-  out.stageMs.emplace_back("prediction", lap(clock));
+  if (base) a.prediction = predict(*base, coasting, a.points, a.patches);
+  stageMs[1] += lap(clock);
   std::vector<CornerMatch> matches;
   const double s = resolutionScale(gray.size());
-  if (prediction) {
+  // Reference corners whose correlation window can be formed (else they cannot be matched).
+  std::vector<char> measurable(ref.points.size(), 1);
+  if (a.prediction) {
     // Reference windows warped into this frame's geometry: window pixel m around the predicted
     // position q maps to the reference at r + J m, J the Jacobian of H_pred^-1 at q.
-    const cv::Matx33d Hinv = prediction->inv();
-    std::vector<cv::Matx22f> maps(refPoints_.size());
-    for (size_t i = 0; i < refPoints_.size(); ++i) {
+    const cv::Matx33d Hinv = a.prediction->inv();
+    std::vector<cv::Matx22f> maps(ref.points.size());
+    for (size_t i = 0; i < ref.points.size(); ++i) {
       const cv::Point2d q =
-          transferPoint(*prediction, cv::Point2d(refPoints_[i].x, refPoints_[i].y));
+          transferPoint(*a.prediction, cv::Point2d(ref.points[i].x, ref.points[i].y));
       maps[i] = jacobianAt(Hinv, q);
     }
     const NccPatches warpedRef =
-        NccPatches::warped(refGray_, refPoints_, maps, params_.correlation.halfWindow);
+        NccPatches::warped(refGray_, ref.points, maps, params_.correlation.halfWindow);
+    for (size_t i = 0; i < ref.points.size(); ++i)
+      measurable[i] = warpedRef.valid(static_cast<int>(i)) ? 1 : 0;
     const double half = params_.homography.guidedSearchHalfSizePx * s;
-    matches = matcher_.match(refPoints_, warpedRef, points, patches, half, half, prediction);
-    out.guided = true;
+    matches = matcher_.match(ref.points, warpedRef, a.points, a.patches, half, half, a.prediction);
   } else {
     const double hw = params_.homography.reacquireWholeImage
                           ? gray.cols
@@ -117,49 +158,97 @@ HomographyTrackResult HomographyTracker::track(const cv::Mat& frame) {
     const double hh = params_.homography.reacquireWholeImage
                           ? gray.rows
                           : params_.correlation.searchHalfHeightPx * s;
-    matches = matcher_.match(refPoints_, refPatches_, points, patches, hw, hh);
+    for (size_t i = 0; i < ref.points.size(); ++i)
+      measurable[i] = ref.patches.valid(static_cast<int>(i)) ? 1 : 0;
+    matches = matcher_.match(ref.points, ref.patches, a.points, a.patches, hw, hh);
   }
-  out.matches = static_cast<int>(matches.size());
-  out.stageMs.emplace_back("matching", lap(clock));
+  a.matches = static_cast<int>(matches.size());
+  stageMs[2] += lap(clock);
 
-  std::vector<cv::Point2f> src, dst;
-  src.reserve(matches.size());
-  dst.reserve(matches.size());
+  a.src.reserve(matches.size());
+  a.dst.reserve(matches.size());
+  std::vector<float> score;
+  score.reserve(matches.size());
   for (const CornerMatch& m : matches) {
-    src.push_back(refPoints_[static_cast<size_t>(m.first)]);
-    dst.push_back(points[static_cast<size_t>(m.second)]);
+    a.src.push_back(ref.points[static_cast<size_t>(m.first)]);
+    a.dst.push_back(a.points[static_cast<size_t>(m.second)]);
+    score.push_back(m.score);
   }
-  const HomographyEstimate est = estimator_.estimate(src, dst, gray.size());
-  out.stageMs.emplace_back("robust fit", lap(clock));
-  out.frameCorners = points;
-  for (size_t i = 0; i < src.size(); ++i)
-    if (est.inliers[i]) out.inlierMatches.emplace_back(src[i], dst[i]);
-  prevPoints_ = std::move(points);
-  prevPatches_ = std::move(patches);
-  out.inliers = est.inlierCount;
-  if (!est.success) {
-    out.failure = est.failure;
-    lastH_.reset();
-    return out;
+  a.est = estimator_.estimate(a.src, a.dst, gray.size(), score);
+  stageMs[3] += lap(clock);
+  if (!a.est.success) {
+    a.failure = a.est.failure;
+    return a;
   }
-  // The paper's failure test: inliers among the reference corners this frame can see.
+  // The paper's failure test: inliers among the reference corners this frame can see (mapped
+  // inside it with their whole window, and with a window in the reference).
   const int margin = params_.correlation.halfWindow;
   int visible = 0;
-  for (const cv::Point2f& r : refPoints_) {
-    const cv::Point2d q = transferPoint(est.H, cv::Point2d(r.x, r.y));
+  for (size_t i = 0; i < ref.points.size(); ++i) {
+    if (!measurable[i]) continue;
+    const cv::Point2d q = transferPoint(a.est.H, cv::Point2d(ref.points[i].x, ref.points[i].y));
     if (q.x >= margin && q.y >= margin && q.x < gray.cols - margin && q.y < gray.rows - margin)
       ++visible;
   }
-  out.inlierRatio = static_cast<double>(est.inlierCount) / std::max(visible, est.inlierCount);
-  out.H = est.H;
-  if (out.inlierRatio < params_.ransac.minInlierRatio) {
-    out.failure = "only " + std::to_string(est.inlierCount) + " of " + std::to_string(visible) +
-                  " visible reference corners are inliers";
-    lastH_.reset();
-    return out;
+  a.inlierRatio = static_cast<double>(a.est.inlierCount) / std::max(visible, a.est.inlierCount);
+  if (a.inlierRatio < params_.ransac.minInlierRatio) {
+    a.failure = "only " + std::to_string(a.est.inlierCount) + " of " + std::to_string(visible) +
+                " visible reference corners are inliers";
+    return a;
   }
-  out.tracked = true;
-  lastH_ = est.H;
+  a.tracked = true;
+  return a;
+}
+
+HomographyTrackResult HomographyTracker::track(const cv::Mat& frame) {
+  const cv::Mat gray = toGray8(frame);
+  if (gray.size() != refGray_.size())
+    throw Error("homography tracker: frame is " + std::to_string(gray.cols) + "x" +
+                std::to_string(gray.rows) + " but the reference is " +
+                std::to_string(refGray_.cols) + "x" + std::to_string(refGray_.rows));
+  double stageMs[4] = {0, 0, 0, 0};
+  // While tracking (or coasting after a loss): the reference's corners matched around their
+  // predicted positions in the denser frame set. Unguided, with the denser re-acquisition sets
+  // on both sides: when there is no prediction, or when the coasted one failed too.
+  const bool coasting = !lastH_.has_value();
+  const std::optional<cv::Matx33d> base = lastH_ ? lastH_ : coastH_;
+  Attempt a;
+  if (base) a = attempt(gray, frameDetector_, ref_, base, coasting, stageMs);
+  std::optional<cv::Matx33d> coastNext;
+  if (!a.tracked) {
+    coastNext = a.prediction;
+    if (!base || coasting) {
+      // The guided attempt's frame corners seed the next frame-to-frame homography only if the
+      // unguided attempt does not replace them.
+      prevPoints_ = std::move(a.points);
+      prevPatches_ = std::move(a.patches);
+      a = attempt(gray, reacquireDetector_, reacquireRef_, std::nullopt, false, stageMs);
+    }
+  }
+
+  HomographyTrackResult out;
+  out.tracked = a.tracked;
+  out.guided = a.prediction.has_value();
+  out.corners = static_cast<int>(a.points.size());
+  out.matches = a.matches;
+  out.inliers = a.est.inlierCount;
+  out.inlierRatio = a.inlierRatio;
+  out.failure = a.failure;
+  if (a.est.success) out.H = a.est.H;
+  for (size_t i = 0; i < a.src.size(); ++i)
+    if (a.est.inliers[i]) out.inlierMatches.emplace_back(a.src[i], a.dst[i]);
+  out.frameCorners = a.points;
+  const char* names[4] = {"corners", "prediction", "matching", "robust fit"};
+  for (int i = 0; i < 4; ++i) out.stageMs.emplace_back(names[i], stageMs[i]);
+  prevPoints_ = std::move(a.points);
+  prevPatches_ = std::move(a.patches);
+  if (a.tracked) {
+    lastH_ = a.est.H;
+    coastH_.reset();
+  } else {
+    lastH_.reset();
+    coastH_ = coastNext;
+  }
   return out;
 }
 

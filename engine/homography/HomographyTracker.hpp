@@ -5,8 +5,11 @@
 // + RANSAC) chained with the last reference -> previous one; reference corners are matched
 // around their predicted positions with reference windows warped by the prediction (Eq. 19
 // style), solved robustly and refined. A frame with too few inliers among the reference corners
-// that fall inside it is flagged lost; while lost every frame is matched unguided (square
-// windows, whole image), so tracking re-acquires on its own when the view returns.
+// that fall inside it (and whose window can be formed) is flagged lost. The next frames are
+// still matched guided by the last prediction carried on with frame-to-frame homographies
+// (coasting); when that fails too, or no frame-to-frame homography is found, a frame is matched
+// unguided (square windows, whole image, a denser corner set on both sides, RANSAC drawing from
+// the best correlation scores first), so tracking re-acquires on its own when the view returns.
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 #include <optional>
@@ -49,24 +52,56 @@ class HomographyTracker {
   HomographyTrackResult track(const cv::Mat& frame);
   void reset();  // forget the previous frame: the next one is matched unguided
 
-  const std::vector<Corner>& referenceCorners() const { return refCorners_; }
+  const std::vector<Corner>& referenceCorners() const { return ref_.corners; }
   cv::Size imageSize() const { return refGray_.size(); }
   bool lost() const { return !lastH_.has_value(); }
 
  private:
-  std::optional<cv::Matx33d> predict(const std::vector<cv::Point2f>& points,
+  // base (reference -> previous frame) chained with the frame-to-frame homography previous ->
+  // this frame; base alone when that is switched off or fails, nullopt when it fails while
+  // coasting.
+  std::optional<cv::Matx33d> predict(const cv::Matx33d& base, bool coasting,
+                                     const std::vector<cv::Point2f>& points,
                                      const NccPatches& patches) const;
 
+  // One corner set of the reference with its windows (tracking or re-acquisition density).
+  struct ReferenceSet {
+    std::vector<Corner> corners;
+    std::vector<cv::Point2f> points;
+    NccPatches patches;
+  };
+  static ReferenceSet referenceSet(const cv::Mat& gray, const CornerDetector& detector,
+                                   int halfWindow);
+
+  // One registration attempt of a frame: guided by the prediction from `base` when there is
+  // one, else unguided. stageMs[4] accumulates corners, prediction, matching, robust fit.
+  struct Attempt {
+    std::vector<cv::Point2f> points;  // the frame's corners
+    NccPatches patches{1};
+    std::optional<cv::Matx33d> prediction;
+    int matches = 0;
+    std::vector<cv::Point2f> src, dst;  // matched reference / frame positions
+    HomographyEstimate est;
+    double inlierRatio = 0.0;
+    bool tracked = false;
+    std::string failure;
+  };
+  Attempt attempt(const cv::Mat& gray, const CornerDetector& detector, const ReferenceSet& ref,
+                  const std::optional<cv::Matx33d>& base, bool coasting, double stageMs[4]);
+
   TrackerParams params_;
-  CornerDetector detector_;
+  CornerDetector detector_;           // the reference's tracking corners
+  CornerDetector frameDetector_;      // a tracked frame's: count times frame_corner_factor
+  CornerDetector reacquireDetector_;  // both sides while lost: count times reacquire_corner_factor
   NarrowBaselineMatcher matcher_;
   RobustHomographyEstimator estimator_;
   cv::Mat refGray_;
-  std::vector<Corner> refCorners_;
-  std::vector<cv::Point2f> refPoints_;
-  NccPatches refPatches_;
+  ReferenceSet ref_, reacquireRef_;
   // The previous frame (for the frame-to-frame homography) and its registration.
   std::optional<cv::Matx33d> lastH_;
+  // After a loss: the last prediction carried on by frame-to-frame homographies, so the next
+  // frames are still matched guided (dropped when a frame-to-frame homography fails).
+  std::optional<cv::Matx33d> coastH_;
   std::vector<cv::Point2f> prevPoints_;
   NccPatches prevPatches_;
 };

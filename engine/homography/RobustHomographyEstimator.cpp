@@ -1,8 +1,10 @@
 #include "engine/homography/RobustHomographyEstimator.hpp"
 
-#include <ceres/ceres.h>
-
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
 #include <cmath>
+#include <limits>
+#include <numeric>
 
 #include "engine/config/ResolutionScale.hpp"
 #include "engine/core/Error.hpp"
@@ -12,16 +14,8 @@ namespace reftrack {
 
 namespace {
 
-struct TransferResidual {
-  double x, y, u, v, scale;  // normalised src (x, y), dst (u, v); scale: back to pixels
-  template <class T>
-  bool operator()(const T* h, T* r) const {
-    const T w = h[6] * x + h[7] * y + T(1.0);
-    r[0] = ((h[0] * x + h[1] * y + h[2]) / w - u) * scale;
-    r[1] = ((h[3] * x + h[4] * y + h[5]) / w - v) * scale;
-    return true;
-  }
-};
+// Progressive sampling never draws from fewer than this many top-ranked matches.
+constexpr int kMinProgressivePool = 8;
 
 std::vector<int> inliersOf(const cv::Matx33d& H, const std::vector<cv::Point2f>& src,
                            const std::vector<cv::Point2f>& dst, double threshold) {
@@ -45,29 +39,73 @@ cv::Matx33d refineHomography(const cv::Matx33d& H, const std::vector<cv::Point2f
   cv::Matx33d Hn = T2 * H * T1.inv();
   if (!(std::abs(Hn(2, 2)) > 1e-9)) return H;
   Hn *= 1.0 / Hn(2, 2);
-  double h[8] = {Hn(0, 0), Hn(0, 1), Hn(0, 2), Hn(1, 0), Hn(1, 1), Hn(1, 2), Hn(2, 0), Hn(2, 1)};
-  ceres::Problem::Options po;
-  po.cost_function_ownership = ceres::TAKE_OWNERSHIP;
-  ceres::Problem problem(po);
-  const double toPixels = 1.0 / T2(0, 0);
+  // Levenberg-Marquardt on the 8 free entries (h33 = 1) with the analytic Jacobian of the
+  // transfer residual; an 8x8 normal-equation solve per step (the problem is tiny: a general
+  // solver's setup cost would dominate).
+  std::vector<Eigen::Vector4d> pts;  // normalised (x, y, u, v)
+  pts.reserve(indices.size());
   for (int i : indices) {
     const auto& a = src[static_cast<size_t>(i)];
     const auto& b = dst[static_cast<size_t>(i)];
-    problem.AddResidualBlock(
-        new ceres::AutoDiffCostFunction<TransferResidual, 2, 8>(
-            new TransferResidual{T1(0, 0) * a.x + T1(0, 2), T1(1, 1) * a.y + T1(1, 2),
-                                 T2(0, 0) * b.x + T2(0, 2), T2(1, 1) * b.y + T2(1, 2), toPixels}),
-        nullptr, h);
+    pts.emplace_back(T1(0, 0) * a.x + T1(0, 2), T1(1, 1) * a.y + T1(1, 2),
+                     T2(0, 0) * b.x + T2(0, 2), T2(1, 1) * b.y + T2(1, 2));
   }
-  ceres::Solver::Options options;
-  options.linear_solver_type = ceres::DENSE_QR;
-  options.max_num_iterations = 10;
-  options.num_threads = 1;
-  options.logging_type = ceres::SILENT;
-  ceres::Solver::Summary summary;
-  ceres::Solve(options, &problem, &summary);
-  if (!summary.IsSolutionUsable()) return H;
-  const cv::Matx33d Hr(h[0], h[1], h[2], h[3], h[4], h[5], h[6], h[7], 1.0);
+  using Vec8 = Eigen::Matrix<double, 8, 1>;
+  using Mat8 = Eigen::Matrix<double, 8, 8>;
+  Vec8 h;
+  h << Hn(0, 0), Hn(0, 1), Hn(0, 2), Hn(1, 0), Hn(1, 1), Hn(1, 2), Hn(2, 0), Hn(2, 1);
+  // Sum of squared residuals; with JtJ/Jtr when asked.
+  const auto evaluate = [&pts](const Vec8& p, Mat8* JtJ, Vec8* Jtr) {
+    double cost = 0;
+    if (JtJ) JtJ->setZero();
+    if (Jtr) Jtr->setZero();
+    for (const Eigen::Vector4d& q : pts) {
+      const double x = q(0), y = q(1);
+      const double w = p(6) * x + p(7) * y + 1.0;
+      if (!(std::abs(w) > 1e-12)) return std::numeric_limits<double>::infinity();
+      const double iw = 1.0 / w;
+      const double px = (p(0) * x + p(1) * y + p(2)) * iw;
+      const double py = (p(3) * x + p(4) * y + p(5)) * iw;
+      const double rx = px - q(2), ry = py - q(3);
+      cost += rx * rx + ry * ry;
+      if (!JtJ) continue;
+      Vec8 jx, jy;
+      jx << x * iw, y * iw, iw, 0, 0, 0, -px * x * iw, -px * y * iw;
+      jy << 0, 0, 0, x * iw, y * iw, iw, -py * x * iw, -py * y * iw;
+      JtJ->selfadjointView<Eigen::Lower>().rankUpdate(jx);
+      JtJ->selfadjointView<Eigen::Lower>().rankUpdate(jy);
+      *Jtr += jx * rx + jy * ry;
+    }
+    return cost;
+  };
+  Mat8 JtJ;
+  Vec8 Jtr;
+  double cost = evaluate(h, &JtJ, &Jtr);
+  if (!std::isfinite(cost)) return H;
+  double lambda = 1e-4;
+  for (int it = 0; it < 10; ++it) {
+    Mat8 A = JtJ.selfadjointView<Eigen::Lower>();
+    A.diagonal() *= 1.0 + lambda;
+    const Vec8 step = A.ldlt().solve(-Jtr);
+    if (!step.allFinite()) break;
+    const Vec8 trial = h + step;
+    Mat8 trialJtJ;
+    Vec8 trialJtr;
+    const double trialCost = evaluate(trial, &trialJtJ, &trialJtr);
+    if (std::isfinite(trialCost) && trialCost < cost) {
+      const bool converged = cost - trialCost < 1e-10 * cost;
+      h = trial;
+      cost = trialCost;
+      JtJ = trialJtJ;
+      Jtr = trialJtr;
+      lambda = std::max(1e-9, lambda * 0.1);
+      if (converged) break;
+    } else {
+      lambda *= 10.0;
+      if (lambda > 1e6) break;
+    }
+  }
+  const cv::Matx33d Hr(h(0), h(1), h(2), h(3), h(4), h(5), h(6), h(7), 1.0);
   cv::Matx33d out = T2.inv() * Hr * T1;
   if (!(std::abs(out(2, 2)) > 1e-12)) return H;
   out *= 1.0 / out(2, 2);
@@ -90,10 +128,14 @@ bool RobustHomographyEstimator::acceptable(const cv::Matx33d& H) const {
 
 HomographyEstimate RobustHomographyEstimator::estimate(const std::vector<cv::Point2f>& src,
                                                        const std::vector<cv::Point2f>& dst,
-                                                       cv::Size imageSize) const {
+                                                       cv::Size imageSize,
+                                                       const std::vector<float>& quality) const {
   if (src.size() != dst.size())
     throw Error("robust homography: " + std::to_string(src.size()) + " source points but " +
                 std::to_string(dst.size()) + " destination points");
+  if (!quality.empty() && quality.size() != src.size())
+    throw Error("robust homography: " + std::to_string(quality.size()) + " quality values for " +
+                std::to_string(src.size()) + " matches");
   HomographyEstimate out;
   const int n = static_cast<int>(src.size());
   out.inliers.assign(static_cast<size_t>(n), 0);
@@ -103,35 +145,77 @@ HomographyEstimate RobustHomographyEstimator::estimate(const std::vector<cv::Poi
   }
   const double spacing = params_.minSampleSpacingPx * resolutionScale(imageSize);
   const double threshold = params_.inlierThresholdPx * resolutionScale(imageSize);
-  const double spacing2 = spacing * spacing;
   cv::RNG rng(static_cast<uint64_t>(params_.seed) + 0x9E3779B97F4A7C15ull);
-  std::vector<int> bestInliers;
-  std::vector<int> sample(4);
-  for (int it = 0; it < params_.maxIterations; ++it) {
-    out.iterations = it + 1;
-    // Draw 4 points pairwise >= spacing apart (a bounded number of tries per iteration).
-    bool drawn = false;
-    for (int attempt = 0; attempt < 40 && !drawn; ++attempt) {
-      int k = 0;
-      for (int tries = 0; k < 4 && tries < 40; ++tries) {
-        const int c = rng.uniform(0, n);
-        bool ok = true;
-        for (int m = 0; m < k && ok; ++m) {
-          const cv::Point2f d = src[static_cast<size_t>(c)] - src[static_cast<size_t>(sample[m])];
-          ok = c != sample[m] && d.dot(d) >= spacing2;
+
+  // Sampling order: best quality first when progressive (PROSAC, Chum & Matas 2005), so that
+  // iteration t draws from the top n_t matches, n_t growing to all n by the last iteration:
+  // n_t is the smallest pool with T_n = T C(n,4) / C(N,4) >= t + 1 (T = max iterations).
+  std::vector<int> order(static_cast<size_t>(n));
+  std::iota(order.begin(), order.end(), 0);
+  const bool progressive = params_.progressiveSampling && !quality.empty();
+  if (progressive)
+    std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+      return quality[static_cast<size_t>(a)] > quality[static_cast<size_t>(b)];
+    });
+  const auto choose4 = [](double m) { return m * (m - 1) * (m - 2) * (m - 3) / 24.0; };
+  const auto poolFor = [&](int it) {
+    if (!progressive) return n;
+    const double perSample = params_.maxIterations / choose4(n);
+    int pool = std::min(n, kMinProgressivePool);
+    while (pool < n && perSample * choose4(pool) < it + 1) ++pool;
+    return pool;
+  };
+
+  // One RANSAC pass with samples pairwise >= minSpacing apart; returns the best support.
+  const auto ransacPass = [&](double minSpacing) {
+    const double spacing2 = minSpacing * minSpacing;
+    std::vector<int> bestInliers;
+    int sample[4] = {0, 0, 0, 0};
+    for (int it = 0; it < params_.maxIterations; ++it) {
+      ++out.iterations;
+      // Draw 4 points of the pool pairwise >= spacing apart (a bounded number of tries per
+      // iteration; a pool that cannot provide them is widened).
+      bool drawn = false;
+      for (int pool = poolFor(it); !drawn; pool = std::min(n, 2 * pool)) {
+        for (int attempt = 0; attempt < 40 && !drawn; ++attempt) {
+          int k = 0;
+          for (int tries = 0; k < 4 && tries < 40; ++tries) {
+            const int c = order[static_cast<size_t>(rng.uniform(0, pool))];
+            bool ok = true;
+            for (int m = 0; m < k && ok; ++m) {
+              const cv::Point2f d =
+                  src[static_cast<size_t>(c)] - src[static_cast<size_t>(sample[m])];
+              ok = c != sample[m] && d.dot(d) >= spacing2;
+            }
+            if (ok) sample[k++] = c;
+          }
+          drawn = k == 4;
         }
-        if (ok) sample[static_cast<size_t>(k++)] = c;
+        if (pool == n) break;
       }
-      drawn = k == 4;
+      if (!drawn) continue;
+      const auto H = homographyFromFourPoints(src, dst, sample);
+      if (!H || !acceptable(*H)) continue;
+      std::vector<int> in = inliersOf(*H, src, dst, threshold);
+      if (in.size() > bestInliers.size()) bestInliers = std::move(in);
+      if (it + 1 >= params_.earlyAcceptMinIterations &&
+          static_cast<double>(bestInliers.size()) > params_.earlyAcceptSupport * n)
+        break;
     }
-    if (!drawn) continue;
-    const auto H = homographyDlt(src, dst, sample);
-    if (!H || !acceptable(*H)) continue;
-    std::vector<int> in = inliersOf(*H, src, dst, threshold);
-    if (in.size() > bestInliers.size()) bestInliers = std::move(in);
-    if (it + 1 >= params_.earlyAcceptMinIterations &&
-        static_cast<double>(bestInliers.size()) > params_.earlyAcceptSupport * n)
-      break;
+    return bestInliers;
+  };
+  std::vector<int> bestInliers = ransacPass(spacing);
+  // When the true matches cover only a strip of the image (a frame that barely overlaps the
+  // reference), few 4-point samples spread that far consist of inliers only: a pass that would
+  // fail is repeated once with half the spacing (measured on the 33 degree rotation sweep at
+  // 320x240, 24 degrees, overlap 0.28: 12 of 20 registered with 60 px, 20 of 20 with 30 px).
+  const auto failing = [&](const std::vector<int>& in) {
+    return static_cast<int>(in.size()) < std::max(4, params_.minInliers) ||
+           static_cast<double>(in.size()) < params_.minInlierRatio * n;
+  };
+  if (failing(bestInliers)) {
+    std::vector<int> closer = ransacPass(0.5 * spacing);
+    if (closer.size() > bestInliers.size()) bestInliers = std::move(closer);
   }
   if (bestInliers.size() < 4) {
     out.failure = "no acceptable 4-point sample (points too close together or degenerate)";

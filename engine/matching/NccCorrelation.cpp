@@ -16,12 +16,14 @@ void requireGray(const cv::Mat& gray) {
 }  // namespace
 
 NccPatches::NccPatches(int halfWindow)
-    : half_(halfWindow), area_((2 * halfWindow + 1) * (2 * halfWindow + 1)) {
+    : half_(halfWindow),
+      area_((2 * halfWindow + 1) * (2 * halfWindow + 1)),
+      stride_((area_ + kLanes - 1) / kLanes * kLanes) {
   if (halfWindow < 1) throw Error("NCC half window must be at least 1");
 }
 
 void NccPatches::normaliseLast(int i) {
-  float* p = data_.data() + static_cast<size_t>(i) * area_;
+  float* p = data_.data() + static_cast<size_t>(i) * stride_;
   double sum = 0;
   for (int k = 0; k < area_; ++k) sum += p[k];
   const float mean = static_cast<float>(sum / area_);
@@ -44,7 +46,7 @@ NccPatches NccPatches::square(const cv::Mat& gray, const std::vector<cv::Point2f
   requireGray(gray);
   NccPatches out(halfWindow);
   const int n = static_cast<int>(centres.size());
-  out.data_.assign(static_cast<size_t>(n) * out.area_, 0.0f);
+  out.data_.assign(static_cast<size_t>(n) * out.stride_, 0.0f);
   out.valid_.assign(static_cast<size_t>(n), 1);
   const int h = halfWindow;
   for (int i = 0; i < n; ++i) {
@@ -54,7 +56,7 @@ NccPatches NccPatches::square(const cv::Mat& gray, const std::vector<cv::Point2f
       out.valid_[static_cast<size_t>(i)] = 0;
       continue;
     }
-    float* p = out.data_.data() + static_cast<size_t>(i) * out.area_;
+    float* p = out.data_.data() + static_cast<size_t>(i) * out.stride_;
     for (int y = cy - h; y <= cy + h; ++y) {
       const uchar* row = gray.ptr<uchar>(y);
       for (int x = cx - h; x <= cx + h; ++x) *p++ = row[x];
@@ -71,14 +73,14 @@ NccPatches NccPatches::warped(const cv::Mat& gray, const std::vector<cv::Point2f
     throw Error("warped NCC windows: one local map per centre is required");
   NccPatches out(halfWindow);
   const int n = static_cast<int>(centres.size());
-  out.data_.assign(static_cast<size_t>(n) * out.area_, 0.0f);
+  out.data_.assign(static_cast<size_t>(n) * out.stride_, 0.0f);
   out.valid_.assign(static_cast<size_t>(n), 1);
   const int h = halfWindow;
   const float maxX = static_cast<float>(gray.cols - 1), maxY = static_cast<float>(gray.rows - 1);
   for (int i = 0; i < n; ++i) {
     const cv::Matx22f& A = maps[static_cast<size_t>(i)];
     const cv::Point2f c = centres[static_cast<size_t>(i)];
-    float* p = out.data_.data() + static_cast<size_t>(i) * out.area_;
+    float* p = out.data_.data() + static_cast<size_t>(i) * out.stride_;
     bool inside = std::isfinite(c.x) && std::isfinite(c.y);
     for (int v = -h; v <= h && inside; ++v) {
       for (int u = -h; u <= h; ++u) {
@@ -109,8 +111,13 @@ float NccPatches::score(int i, const NccPatches& other, int j) const {
   if (!valid(i) || !other.valid(j)) return -1.0f;
   const float* a = patch(i);
   const float* b = other.patch(j);
+  // kLanes independent partial sums over the zero-padded stride: the compiler maps them onto
+  // one SIMD register (a single running sum would serialise on the float additions).
+  float lanes[kLanes] = {};
+  for (int k = 0; k < stride_; k += kLanes)
+    for (int l = 0; l < kLanes; ++l) lanes[l] += a[k + l] * b[k + l];
   float s = 0.0f;
-  for (int k = 0; k < area_; ++k) s += a[k] * b[k];
+  for (int l = 0; l < kLanes; ++l) s += lanes[l];
   return s;
 }
 

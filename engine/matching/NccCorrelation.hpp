@@ -24,16 +24,17 @@ class NccPatches {
 
   int size() const { return static_cast<int>(valid_.size()); }
   int halfWindow() const { return half_; }
-  int area() const { return area_; }
+  int area() const { return area_; }  // pixels per window; patch(i) holds them in order
   bool valid(int i) const { return valid_[static_cast<size_t>(i)] != 0; }
-  const float* patch(int i) const { return data_.data() + static_cast<size_t>(i) * area_; }
+  const float* patch(int i) const { return data_.data() + static_cast<size_t>(i) * stride_; }
 
   // NCC in [-1, 1] of patch i here and patch j of `other` (same window size); -1 if invalid.
   float score(int i, const NccPatches& other, int j) const;
 
  private:
+  static constexpr int kLanes = 8;  // patches are zero-padded to a multiple of this
   void normaliseLast(int i);
-  int half_, area_;
+  int half_, area_, stride_;
   std::vector<float> data_;
   std::vector<char> valid_;
 };

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <opencv2/core/utility.hpp>
 
 #include "engine/core/Error.hpp"
@@ -44,4 +45,27 @@ TEST(HomographyBenchmark, FiniteMedianSkipsNaN) {
   o.frames = 20;
   o.pathFrames = 10;
   EXPECT_THROW(o.check(), Error);
+}
+
+TEST(HomographyBenchmark, KeepsEveryFrameThroughAWidePanAt320x240) {
+  const auto context = render::createHeadlessContext();
+  cv::setNumThreads(1);
+  BenchmarkOptions o;
+  o.size = {320, 240};
+  o.frames = 60;  // the bench-homography pan: out to 40 degrees (frame 37) and back to 30
+  o.pathFrames = 150;
+  const BenchmarkResult r = runHomographyBenchmark(o);
+  // Measured 60 of 60 (the baseline: 44 of 60). Beyond ~30 degrees only 27-31 of the 55
+  // reference corners are in view; a frame flagged lost there is still matched guided by the
+  // carried-on prediction, so tracking does not hinge on unguided re-acquisition at 40 degrees.
+  EXPECT_EQ(r.tracker.registered, 60) << (r.tracker.failures.empty() ? "" : r.tracker.failures[0]);
+  EXPECT_GE(r.tracker.registered, r.baseline.registered);
+  // At the frame corners, extrapolated from the strip of overlap (half of these frames are
+  // beyond 25 degrees): measured median 1.13 px, worst 6.7 px (the frame corner furthest from
+  // the matched strip at 40 degrees); the baseline's median 1.55 px on the 44 it registers.
+  EXPECT_LT(finiteMedian(r.tracker.cornerErrorPx), 1.5);
+  EXPECT_LE(finiteMedian(r.tracker.cornerErrorPx), finiteMedian(r.baseline.cornerErrorPx));
+  std::printf("wide pan 320x240: reftrack %d/60 median %.3f px; ORB %d/60 median %.3f px\n",
+              r.tracker.registered, finiteMedian(r.tracker.cornerErrorPx), r.baseline.registered,
+              finiteMedian(r.baseline.cornerErrorPx));
 }

@@ -14,17 +14,29 @@ TEST(HomographyTrackerParams, RoundTrip) {
   in.guidedSearchHalfSizePx = 4.5;
   in.frameToFramePrediction = false;
   in.reacquireWholeImage = false;
+  in.reacquireCornerFactor = 2.5;
+  in.frameCornerFactor = 1.5;
   HomographyTrackerParams out;
   roundTrip(in, out);
   EXPECT_DOUBLE_EQ(out.guidedSearchHalfSizePx, 4.5);
   EXPECT_FALSE(out.frameToFramePrediction);
   EXPECT_FALSE(out.reacquireWholeImage);
+  EXPECT_DOUBLE_EQ(out.reacquireCornerFactor, 2.5);
+  EXPECT_DOUBLE_EQ(out.frameCornerFactor, 1.5);
 }
 
 TEST(HomographyTrackerParams, BadFieldIsNamed) {
   HomographyTrackerParams p;
   p.guidedSearchHalfSizePx = std::numeric_limits<double>::quiet_NaN();
   EXPECT_NE(errorMessage([&] { p.check(); }).find("homography.guided_search_half_size_px"),
+            std::string::npos);
+  p.guidedSearchHalfSizePx = 8;
+  p.reacquireCornerFactor = 0.5;
+  EXPECT_NE(errorMessage([&] { p.check(); }).find("homography.reacquire_corner_factor"),
+            std::string::npos);
+  p.reacquireCornerFactor = 3;
+  p.frameCornerFactor = 20;
+  EXPECT_NE(errorMessage([&] { p.check(); }).find("homography.frame_corner_factor"),
             std::string::npos);
   auto fs = parseYaml("h: { frame_to_frame_prediction: 3 }\n");
   HomographyTrackerParams q;

@@ -18,6 +18,7 @@ TEST(RansacParams, DefaultsAreThePapers) {
   EXPECT_DOUBLE_EQ(p.minSampleSpacingPx, 60);
   EXPECT_DOUBLE_EQ(p.minInlierRatio, 0.35);
   EXPECT_TRUE(p.refine);
+  EXPECT_TRUE(p.progressiveSampling);  // not the paper's: ranked sampling within its 70 draws
 }
 
 TEST(RansacParams, RoundTrip) {
@@ -26,12 +27,14 @@ TEST(RansacParams, RoundTrip) {
   in.inlierThresholdPx = 1.25;
   in.refine = false;
   in.seed = 9;
+  in.progressiveSampling = false;
   RansacParams out;
   roundTrip(in, out);
   EXPECT_EQ(out.maxIterations, 200);
   EXPECT_DOUBLE_EQ(out.inlierThresholdPx, 1.25);
   EXPECT_FALSE(out.refine);
   EXPECT_EQ(out.seed, 9);
+  EXPECT_FALSE(out.progressiveSampling);
 }
 
 TEST(RansacParams, EveryBadFieldIsNamed) {
