@@ -28,6 +28,7 @@ struct Options {
   bool fitQ = true;
   std::filesystem::path params;
   std::filesystem::path outDir = "experiment-6dof";
+  std::filesystem::path cacheDir;  // reuse rendered sequences across runs when set
 };
 
 void printRun(const TrackerRun& r, std::size_t frames) {
@@ -63,6 +64,9 @@ CommandRegistration registerExperimentSixDofCommand(CLI::App& parent) {
                 "Use Q from --params instead of fitting it (paper Sec. 5.3) to the ground truth "
                 "of another run of the preset (seed + 1)");
   sub->add_option("--out", o->outDir, "Folder for the plots and trajectories");
+  sub->add_option("--cache", o->cacheDir,
+                  "Folder keeping rendered sequences (one subfolder per preset, size, frames, "
+                  "seed, noise, ...): a repeated run loads the frames instead of rendering them");
   sub->footer(
       "Single thread (cv::setNumThreads(1)). Figures: tracked "
       "fraction, cube-vertex error (mean, "
@@ -75,7 +79,9 @@ CommandRegistration registerExperimentSixDofCommand(CLI::App& parent) {
         o->simulation.size = *parseImageSize(o->size);
         cv::setNumThreads(1);
         const std::unique_ptr<render::GlContext> gl = render::createHeadlessContext();
-        const SimulatedSequence s = simulateSequence(o->simulation);
+        const SimulatedSequence s = o->cacheDir.empty()
+                                        ? simulateSequence(o->simulation)
+                                        : cachedSimulatedSequence(o->simulation, o->cacheDir);
         const Preparation& prep = s.preparation;
         std::printf("map: %zu corners A, %zu corners B, %zu 3D points\n", prep.map.cornersA.size(),
                     prep.map.cornersB.size(), prep.map.matches.size());

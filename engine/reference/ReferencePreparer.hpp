@@ -21,14 +21,16 @@ namespace reftrack {
 
 struct ReferencePreparerParams {
   // Six times the per-frame corner count (55 at 320x240) at half the spacing, found at full
-  // resolution down to a tenth of the usual Harris quality: the tracker's wide-baseline matching
-  // needs many reference corners with 3D points (640x480 simulator, measured: 1135 corners and
-  // 570 kept matches; 1036 and 425 when found on the 320x240 pyramid level).
+  // resolution down to 1e-4 of the strongest Harris response (a tenth of its contrast): the
+  // tracker's wide-baseline matching needs many reference corners with 3D points, and a printed
+  // marker's black-white corners would otherwise crowd out the scene's weaker ones (real
+  // hand-held card-on-table clip: 1e-3 gives 34 map points, 1e-4 gives 44 and tracks every
+  // frame; the simulator's 640x480 map: 615 points).
   CornerParams corners = [] {
     CornerParams c;
     c.countAt320x240 = 330;
     c.minDistancePx = 4.0;
-    c.quality = 0.001;
+    c.quality = 1e-4;
     c.detectAtPaperScale = false;
     return c;
   }();

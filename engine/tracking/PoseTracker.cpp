@@ -14,6 +14,7 @@
 #include "engine/features/CornerDetector.hpp"
 #include "engine/geometry/FundamentalMatrix.hpp"
 #include "engine/matching/NarrowBaselineMatcher.hpp"
+#include "engine/tracking/PoseSupport.hpp"
 #include "engine/tracking/WideBaselineMatcher.hpp"
 
 namespace reftrack {
@@ -80,14 +81,16 @@ PreparedReference prepare(const cv::Mat& image, const std::vector<ReferenceCorne
     r.mapMatch[static_cast<std::size_t>(c)] = m;
   }
   r.gray = toGray8(image);
-  r.matchable = MatchableReference::build(r.gray, std::move(pixels));
+  // Corners with a 3D point are tried first: they carry the three-view terms.
+  std::vector<char> hasPoint(corners.size(), 0);
+  for (std::size_t c = 0; c < corners.size(); ++c) hasPoint[c] = r.mapMatch[c] >= 0;
+  r.matchable = MatchableReference::build(r.gray, std::move(pixels), hasPoint);
   return r;
 }
 
-// Point-to-epipolar-line distances for a match under T (reference camera -> current camera).
-double maxEpipolarDistance(const Eigen::Matrix3d& K, const RigidPose& T,
-                           const Eigen::Vector2d& pRef, const Eigen::Vector2d& pK) {
-  const Eigen::Matrix3d F = fundamentalMatrix(K, T);
+// Point-to-epipolar-line distances for a match under F (reference camera -> current camera).
+double maxEpipolarDistance(const Eigen::Matrix3d& F, const Eigen::Vector2d& pRef,
+                           const Eigen::Vector2d& pK) {
   const Eigen::Vector3d a(pRef.x(), pRef.y(), 1.0), k(pK.x(), pK.y(), 1.0);
   const Eigen::Vector3d lk = F * a, la = F.transpose() * k;
   const double e = k.dot(lk);
@@ -105,13 +108,14 @@ struct PoseTracker::Impl {
   CornerVarianceModel varianceModel;
   ArMotionModel motionModel;
   PreparedReference refA, refB;
+  std::unique_ptr<CornerDetector> detector;
   std::unique_ptr<RegularizedPoseEstimator> estimator;
   std::unique_ptr<TemporalRegularizer> regularizer;
   TrackingState state = TrackingState::Initialising;
 
-  // Previous frame.
-  cv::Mat prevGray;
-  std::vector<Corner> prevCorners;
+  // Previous frame: the corners used for frame-to-frame matching and their NCC windows.
+  std::vector<cv::Point2f> prevF2F;
+  NccPatches prevF2FWindows;
   std::vector<PreviousMatch> prevA, prevB;
 
   Impl(ReferenceMap m, const TrackerParams& p, PoseTrackerLimits l)
@@ -122,7 +126,23 @@ struct PoseTracker::Impl {
     refA = prepare(map.imageA, map.cornersA, map.camera, map.matches, true);
     refB = prepare(map.imageB, map.cornersB, map.camera, map.matches, false);
     estimator = std::make_unique<RegularizedPoseEstimator>(map.camera.K(), map.T_AB());
+    applyCornerParams();
     applyPoseParams();
+  }
+
+  // The frame's corner detector (kept across frames: it adapts its threshold to the sequence).
+  void applyCornerParams() {
+    // Full-resolution detection: the pyramid shortcut is faster but its corners repeat across
+    // viewpoints far less often (measured: 75% vs 23% of corners within 0.5 px under a small
+    // warp), and wide-baseline matching lives on repeatable corners.
+    CornerParams cornerParams = params.corners;
+    cornerParams.detectAtPaperScale = false;
+    // The paper's 50-60 corners per 320x240 frame serve one homography; six degrees of freedom
+    // against two references need more support: at least twice that (measured at 320x240: 55
+    // corners left ~15 3D-2D inliers and lost half the frames of a hand-held sequence).
+    cornerParams.countAt320x240 = std::max(cornerParams.countAt320x240, 2 * 55);
+    cornerParams.quality = std::min(cornerParams.quality, params.wideBaseline.frameCornerQuality);
+    detector = std::make_unique<CornerDetector>(cornerParams);
   }
 
   void applyPoseParams() {
@@ -170,26 +190,23 @@ PoseTrackingResult PoseTracker::Impl::process(const cv::Mat& frame) {
   const double gate = limits.gatePx * scale;
 
   Clock::time_point t = Clock::now();
-  // Full-resolution detection: the pyramid shortcut is faster but its corners repeat across
-  // viewpoints far less often (measured: 75% vs 23% of corners within 0.5 px under a small warp),
-  // and wide-baseline matching lives on repeatable corners.
-  CornerParams cornerParams = params.corners;
-  cornerParams.detectAtPaperScale = false;
-  // The paper's 50-60 corners per 320x240 frame serve one homography; six degrees of freedom
-  // against two references need more support: at least twice that (measured at 320x240: 55
-  // corners left ~15 3D-2D inliers and lost half the frames of a hand-held sequence).
-  cornerParams.countAt320x240 = std::max(cornerParams.countAt320x240, 2 * 55);
-  const CornerDetector detector(cornerParams);
-  const std::vector<Corner> corners = detector.detect(gray);
+  const std::vector<Corner> corners = detector->detect(gray);
   const std::vector<cv::Point2f> pixels = positionsOf(corners);
   r.corners = static_cast<int>(corners.size());
   r.frameCorners = pixels;
   r.timings.push_back({"corners", msSince(t)});
   const bool wasTracking = state == TrackingState::Tracking && !prevA.empty();
+  // Frame-to-frame matching only predicts W = L H (Eq. 18): the strongest corners suffice, and
+  // their windows are kept for the next frame.
+  const std::size_t f2fCount = std::min<std::size_t>(
+      pixels.size(),
+      static_cast<std::size_t>(params.wideBaseline.frameToFrameCornersFor(gray.size())));
+  std::vector<cv::Point2f> f2fPoints(pixels.begin(), pixels.begin() + static_cast<long>(f2fCount));
+  NccPatches f2fWindows = NccPatches::square(gray, f2fPoints, params.correlation.halfWindow);
   auto finish = [&](PoseTrackingResult& res) {
     res.totalMs = msSince(start);
-    prevGray = gray;
-    prevCorners = corners;
+    prevF2F = std::move(f2fPoints);
+    prevF2FWindows = std::move(f2fWindows);
     return res;
   };
   if (r.corners < limits.minCorners) {
@@ -207,29 +224,32 @@ PoseTrackingResult PoseTracker::Impl::process(const cv::Mat& frame) {
     t = Clock::now();
     // Frame-to-frame homography V_k -> V_{k-1}: only a prediction for W = L H (Eq. 18), so
     // OpenCV's RANSAC homography suffices here; a failure falls back to the identity.
-    const std::vector<CornerMatch> f2f = narrow.match(gray, corners, prevGray, prevCorners);
+    const std::vector<CornerMatch> f2f =
+        narrow.match(f2fPoints, f2fWindows, prevF2F, prevF2FWindows,
+                     params.correlation.searchHalfWidthPx * scale,
+                     params.correlation.searchHalfHeightPx * scale);
     cv::Matx33d H = cv::Matx33d::eye();
     if (f2f.size() >= 8) {
       std::vector<cv::Point2f> a, b;
       for (const CornerMatch& m : f2f) {
-        a.push_back(pixels[static_cast<std::size_t>(m.first)]);
-        b.push_back(prevCorners[static_cast<std::size_t>(m.second)].position);
+        a.push_back(f2fPoints[static_cast<std::size_t>(m.first)]);
+        b.push_back(prevF2F[static_cast<std::size_t>(m.second)]);
       }
       const cv::Mat Hm = cv::findHomography(a, b, cv::RANSAC, 3.0 * scale);
       if (!Hm.empty()) H = cv::Matx33d(Hm);
     }
     r.timings.push_back({"frame-to-frame", msSince(t)});
-    const cv::Mat frameF = [&] {
-      cv::Mat f;
-      gray.convertTo(f, CV_32F);
-      return f;
-    }();
+    t = Clock::now();
+    // The frame's correlation windows, sampled once for both references.
+    const MatchableFrame matchable =
+        MatchableFrame::build(gray, pixels, params.wideBaseline.halfWindow);
+    r.timings.push_back({"frame windows", msSince(t)});
     const WideBaselineMatcher wide(params.wideBaseline);
     t = Clock::now();
-    mA = wide.match(frameF, pixels, H, prevA, refA.matchable);
+    mA = wide.match(matchable, H, prevA, refA.matchable);
     r.timings.push_back({"match A", msSince(t)});
     t = Clock::now();
-    mB = wide.match(frameF, pixels, H, prevB, refB.matchable);
+    mB = wide.match(matchable, H, prevB, refB.matchable);
     r.timings.push_back({"match B", msSince(t)});
   } else {
     // Initialisation (paper Sec. 6.2): narrow-baseline matching to V_A; V_B follows through the
@@ -344,13 +364,15 @@ PoseTrackingResult PoseTracker::Impl::process(const cv::Mat& frame) {
   const RigidPose TBkLin = TAkLin * TABinv;
   const bool useEpipolarA = TAkLin.translation().norm() >= limits.minEpipolarBaseline;
   const bool useEpipolarB = TBkLin.translation().norm() >= limits.minEpipolarBaseline;
+  const Eigen::Matrix3d FA = fundamentalMatrix(map.camera.K(), TAkLin);
+  const Eigen::Matrix3d FB = fundamentalMatrix(map.camera.K(), TBkLin);
   auto sigmaOf = [&](float contrastK, float contrastRef) {
     return std::sqrt(varianceModel.variance(contrastK) + varianceModel.variance(contrastRef));
   };
   for (std::size_t i = 0; i < mA.size(); ++i) {
     const Eigen::Vector2d& pK = undist[static_cast<std::size_t>(mA[i].frameCorner)];
     const Eigen::Vector2d& pRef = refA.undistorted[static_cast<std::size_t>(mA[i].referenceCorner)];
-    if (maxEpipolarDistance(map.camera.K(), TAkLin, pRef, pK) > gate) continue;
+    if (maxEpipolarDistance(FA, pRef, pK) > gate) continue;
     inlierA[i] = 1;
     if (!useEpipolarA) continue;
     meas.toA.push_back({pRef, pK,
@@ -360,7 +382,7 @@ PoseTrackingResult PoseTracker::Impl::process(const cv::Mat& frame) {
   for (std::size_t i = 0; i < mB.size(); ++i) {
     const Eigen::Vector2d& pK = undist[static_cast<std::size_t>(mB[i].frameCorner)];
     const Eigen::Vector2d& pRef = refB.undistorted[static_cast<std::size_t>(mB[i].referenceCorner)];
-    if (maxEpipolarDistance(map.camera.K(), TBkLin, pRef, pK) > gate) continue;
+    if (maxEpipolarDistance(FB, pRef, pK) > gate) continue;
     inlierB[i] = 1;
     if (!useEpipolarB) continue;
     meas.toB.push_back({pRef, pK,
@@ -406,6 +428,15 @@ PoseTrackingResult PoseTracker::Impl::process(const cv::Mat& frame) {
     lose(r, "reprojection RMS " + std::to_string(rms) + " px at the solution is too large");
     return finish(r);
   }
+  // Support: the pose the matches alone determine, with the residuals they actually show, must
+  // pin the scene down in the image (blurred frames: few, poorly localised corners).
+  const std::optional<double> supportSd = reprojectionSupportSdPx(map.camera, TAk, meas.threeView);
+  r.supportSdPx = supportSd.value_or(INFINITY);
+  if (!supportSd || *supportSd > limits.maxSupportSdPx * scale) {
+    lose(r, "too little support: the matches fix the scene's image position only to " +
+                std::to_string(r.supportSdPx) + " px (SD)");
+    return finish(r);
+  }
   r.message = wasTracking ? "tracking" : "initialised from the reference images";
   r.state = TrackingState::Tracking;
   state = TrackingState::Tracking;
@@ -440,6 +471,7 @@ PoseTrackingResult PoseTracker::process(const cv::Mat& frame) { return impl_->pr
 void PoseTracker::setParams(const TrackerParams& params) {
   params.check();
   impl_->params = params;
+  impl_->applyCornerParams();
   impl_->applyPoseParams();
 }
 void PoseTracker::setMotionModel(const ArMotionModel& model) {

@@ -5,7 +5,9 @@
 // PnP-RANSAC on the 3D-2D pairs and an epipolar gate, then the pose x_Ak from the standard or the
 // regularised estimator (TemporalRegularizer). Not tracking: initialisation by narrow-baseline
 // matching to V_A (or V_B) and V_B through the stored matches. Never reports a pose without
-// enough inlier support: the frame is `Lost` instead, with the reason.
+// enough inlier support (count, residual RMS, covariance and PoseSupport's reprojection SD, which
+// rejects black, textureless and heavily blurred frames): the frame is `Lost` instead, with the
+// reason.
 #include <memory>
 #include <optional>
 #include <string>
@@ -29,6 +31,9 @@ struct PoseTrackerLimits {
   double gatePx = 2.5;                // residual gate (pixels at 320x240, scaled with the image)
   double maxRmsPx = 1.5;              // three-view RMS at the solution (at 320x240, scaled) -> lost
   double maxSigmaTranslation = 0.05;  // metres: a larger pose SD means the estimate blew up
+  // Support (PoseSupport.hpp): SD of the reprojected support points under the matches alone
+  // (pixels at 320x240, scaled) above this -> lost.
+  double maxSupportSdPx = 0.25;
   int ransacIterations = 100;         // PnP-RANSAC on the 3D-2D pairs
   double minEpipolarBaseline = 0.01;  // metres: closer to a reference, its epipolar terms drop
   void check() const;
@@ -45,6 +50,7 @@ struct PoseTrackingResult {
   std::optional<RigidPose> worldToCamera;  // T_k = T_Ak T_A, only with support
   std::optional<RigidPose> T_Ak;
   Matrix6d covariance = Matrix6d::Zero();  // Omega_k of x_Ak
+  double supportSdPx = 0.0;                // PoseSupport: reprojection SD from the matches alone
   int corners = 0, matchesA = 0, matchesB = 0, threeView = 0, inliers = 0;
   std::vector<StageTiming> timings;
   double totalMs = 0.0;

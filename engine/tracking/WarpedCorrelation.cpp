@@ -87,4 +87,85 @@ double WarpedCorrelation::score(const FramePatch& patch, const cv::Matx33d& W,
   return dot / std::sqrt(ss);
 }
 
+namespace {
+
+// In place: subtract the mean and scale to unit norm; false when the window is flat (SD below
+// ~0.5 grey level, where the correlation would only measure noise).
+bool normaliseWindow(float* v, int count) {
+  float sum = 0.0f;
+  for (int i = 0; i < count; ++i) sum += v[i];
+  const float mean = sum / static_cast<float>(count);
+  float ss = 0.0f;
+  for (int i = 0; i < count; ++i) {
+    v[i] -= mean;
+    ss += v[i] * v[i];
+  }
+  if (!(ss >= 0.25f * static_cast<float>(count))) return false;
+  const float inv = 1.0f / std::sqrt(ss);
+  for (int i = 0; i < count; ++i) v[i] *= inv;
+  return true;
+}
+
+}  // namespace
+
+bool sampleFrameWindow(const cv::Mat& gray8, cv::Point2d pK, int n, float* out) {
+  if (gray8.type() != CV_8UC1) throw Error("sampleFrameWindow: the frame must be CV_8UC1");
+  if (!std::isfinite(pK.x) || !std::isfinite(pK.y)) return false;
+  const double left = pK.x - n, top = pK.y - n;
+  const int x0 = static_cast<int>(std::floor(left)), y0 = static_cast<int>(std::floor(top));
+  const int side = 2 * n + 1;
+  if (x0 < 0 || y0 < 0 || x0 + side >= gray8.cols || y0 + side >= gray8.rows) return false;
+  // One sub-pixel offset for the whole window: four fixed bilinear weights.
+  const float fx = static_cast<float>(left - x0), fy = static_cast<float>(top - y0);
+  const float w00 = (1 - fx) * (1 - fy), w01 = fx * (1 - fy), w10 = (1 - fx) * fy, w11 = fx * fy;
+  for (int r = 0; r < side; ++r) {
+    const uchar* a = gray8.ptr<uchar>(y0 + r) + x0;
+    const uchar* b = gray8.ptr<uchar>(y0 + r + 1) + x0;
+    float* o = out + r * side;
+    for (int c = 0; c < side; ++c) o[c] = w00 * a[c] + w01 * a[c + 1] + w10 * b[c] + w11 * b[c + 1];
+  }
+  return normaliseWindow(out, side * side);
+}
+
+bool sampleWarpedReferenceWindow(const cv::Mat& referenceF, const cv::Matx33d& W, cv::Point2d pK,
+                                 cv::Point2d pA, int n, float* out) {
+  if (referenceF.type() != CV_32FC1)
+    throw Error("sampleWarpedReferenceWindow: the reference must be CV_32FC1");
+  const cv::Point2d centreW = apply(W, pK.x, pK.y);
+  const cv::Point2d shift = pA - centreW;
+  if (!std::isfinite(shift.x) || !std::isfinite(shift.y)) return false;
+  const int side = 2 * n + 1, w = referenceF.cols, h = referenceF.rows;
+  const std::size_t step = referenceF.step1();
+  const float* base = referenceF.ptr<float>(0);
+  for (int dy = -n, i = 0; dy <= n; ++dy) {
+    // Homogeneous image of the row start; each step in x adds the first column of W.
+    const double y = pK.y + dy, x = pK.x - n;
+    double u = W(0, 0) * x + W(0, 1) * y + W(0, 2);
+    double v = W(1, 0) * x + W(1, 1) * y + W(1, 2);
+    double s = W(2, 0) * x + W(2, 1) * y + W(2, 2);
+    for (int dx = -n; dx <= n; ++dx, ++i, u += W(0, 0), v += W(1, 0), s += W(2, 0)) {
+      const double qx = u / s + shift.x, qy = v / s + shift.y;
+      if (!(qx >= 0.0 && qy >= 0.0 && qx < w - 1 && qy < h - 1)) return false;
+      const int x0 = static_cast<int>(qx), y0 = static_cast<int>(qy);
+      const float fx = static_cast<float>(qx - x0), fy = static_cast<float>(qy - y0);
+      const float* r0 = base + static_cast<std::size_t>(y0) * step + x0;
+      const float* r1 = r0 + step;
+      out[i] = (1 - fy) * ((1 - fx) * r0[0] + fx * r0[1]) + fy * ((1 - fx) * r1[0] + fx * r1[1]);
+    }
+  }
+  return normaliseWindow(out, side * side);
+}
+
+float windowScore(const float* a, const float* b, int count) {
+  // Eight independent partial sums: the compiler can keep them in one vector register.
+  float partial[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+  int i = 0;
+  for (; i + 8 <= count; i += 8)
+    for (int j = 0; j < 8; ++j) partial[j] += a[i + j] * b[i + j];
+  float sum = 0.0f;
+  for (; i < count; ++i) sum += a[i] * b[i];
+  for (float p : partial) sum += p;
+  return sum;
+}
+
 }  // namespace reftrack

@@ -34,4 +34,17 @@ class WarpedCorrelation {
   int n_;
 };
 
+// The precomputed form for many candidates (WideBaselineMatcher): each window is sampled once as
+// a zero-mean, unit-norm vector of (2n+1)^2 floats, and a pair's Eq. 19 score is the dot product
+// of the two vectors. Both windows are centred exactly on their sub-pixel corners. The samplers
+// return false (leaving `out` unspecified) when the window leaves the image or is flat.
+// The frame window around the sub-pixel pK, bilinear (gray8: CV_8UC1).
+bool sampleFrameWindow(const cv::Mat& gray8, cv::Point2d pK, int n, float* out);
+// The reference (CV_32FC1) sampled at pA + W(pK + m) - W(pK) for every window offset m, with W
+// mapping frame pixels to reference pixels (O W of Eq. 19 with O centring the window on pA).
+bool sampleWarpedReferenceWindow(const cv::Mat& referenceF, const cv::Matx33d& W, cv::Point2d pK,
+                                 cv::Point2d pA, int n, float* out);
+// Dot product of two sampled windows of `count` floats: their Eq. 19 score in [-1, 1].
+float windowScore(const float* a, const float* b, int count);
+
 }  // namespace reftrack

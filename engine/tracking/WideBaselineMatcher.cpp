@@ -11,72 +11,108 @@
 
 namespace reftrack {
 
-MatchableReference MatchableReference::build(const cv::Mat& image,
-                                             std::vector<cv::Point2f> corners) {
+MatchableReference MatchableReference::build(const cv::Mat& image, std::vector<cv::Point2f> corners,
+                                             const std::vector<char>& preferred) {
   if (image.empty()) throw Error("MatchableReference: empty reference image");
+  if (!preferred.empty() && preferred.size() != corners.size())
+    throw Error("MatchableReference: one preference flag per corner is required");
   MatchableReference r;
   cv::Mat gray = image;
   if (image.channels() == 3) cv::cvtColor(image, gray, cv::COLOR_BGR2GRAY);
   gray.convertTo(r.imageF, CV_32F);
   r.corners = std::move(corners);
   r.grid = CornerGrid(r.corners, image.size(), 32);
+  // Round robin over the cells of an 8x6 grid, preferred corners first.
+  constexpr int kColumns = 8, kRows = 6;
+  for (const bool wantPreferred : {true, false}) {
+    std::vector<std::vector<int>> cells(kColumns * kRows);
+    for (int i = 0; i < static_cast<int>(r.corners.size()); ++i) {
+      const bool isPreferred = preferred.empty() || preferred[static_cast<std::size_t>(i)];
+      if (isPreferred != wantPreferred) continue;
+      const cv::Point2f& p = r.corners[static_cast<std::size_t>(i)];
+      const int cx = std::clamp(static_cast<int>(p.x * kColumns / image.cols), 0, kColumns - 1);
+      const int cy = std::clamp(static_cast<int>(p.y * kRows / image.rows), 0, kRows - 1);
+      cells[static_cast<std::size_t>(cy * kColumns + cx)].push_back(i);
+    }
+    for (std::size_t round = 0;; ++round) {
+      bool any = false;
+      for (const std::vector<int>& cell : cells)
+        if (round < cell.size()) {
+          r.order.push_back(cell[round]);
+          any = true;
+        }
+      if (!any) break;
+    }
+  }
   return r;
 }
 
+MatchableFrame MatchableFrame::build(const cv::Mat& image, std::vector<cv::Point2f> corners,
+                                     int halfWindow) {
+  if (image.empty()) throw Error("MatchableFrame: empty frame");
+  if (halfWindow < 1) throw Error("MatchableFrame: halfWindow must be >= 1");
+  cv::Mat gray = image;
+  if (image.channels() == 3) cv::cvtColor(image, gray, cv::COLOR_BGR2GRAY);
+  if (gray.type() != CV_8UC1) throw Error("MatchableFrame: the frame must be 8-bit grey or BGR");
+  MatchableFrame f;
+  f.size = gray.size();
+  f.halfWindow = halfWindow;
+  f.corners = std::move(corners);
+  f.grid = CornerGrid(f.corners, f.size, 32);
+  const int side = 2 * halfWindow + 1;
+  f.windows.resize(f.corners.size() * static_cast<std::size_t>(side * side));
+  f.valid.resize(f.corners.size());
+  for (std::size_t i = 0; i < f.corners.size(); ++i)
+    f.valid[i] = sampleFrameWindow(gray, cv::Point2d(f.corners[i]), halfWindow,
+                                   f.windows.data() + i * static_cast<std::size_t>(side * side));
+  return f;
+}
+
 namespace {
+
 inline cv::Point2d apply(const cv::Matx33d& M, cv::Point2d p) {
   const cv::Vec3d q = M * cv::Vec3d(p.x, p.y, 1.0);
   return {q[0] / q[2], q[1] / q[2]};
 }
-}  // namespace
 
-bool WideBaselineMatcher::localAffine(cv::Point2d p, const std::vector<PreviousMatch>& previous,
-                                      const MatchableReference& reference, cv::Matx33d& L) const {
-  std::vector<int> all(previous.size());
-  for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
-  return localAffineFrom(p, previous, all, reference, L);
-}
-
-bool WideBaselineMatcher::localAffineFrom(cv::Point2d p, const std::vector<PreviousMatch>& previous,
-                                          const std::vector<int>& nearby,
-                                          const MatchableReference& reference,
-                                          cv::Matx33d& L) const {
-  const int k = params_.affineNeighbours;
+// Least-squares affine map src -> dst at `p` from the pairs listed in `nearby` nearest to p (in
+// src): k of them, more (up to 8) when the nearest are nearly collinear. False when degenerate.
+bool fitLocalAffine(cv::Point2d p, const std::vector<cv::Point2f>& src,
+                    const std::vector<cv::Point2f>& dst, const std::vector<int>& nearby, int k,
+                    cv::Matx33d& L) {
   if (static_cast<int>(nearby.size()) < 3) return false;
-  // The nearest previous matches (partial selection over the nearby ones).
   thread_local std::vector<std::pair<double, int>> byDistance;
   byDistance.clear();
   for (int i : nearby) {
-    const cv::Point2d d = cv::Point2d(previous[static_cast<std::size_t>(i)].previous) - p;
+    const cv::Point2d d = cv::Point2d(src[static_cast<std::size_t>(i)]) - p;
     byDistance.emplace_back(d.dot(d), i);
   }
   const int available = static_cast<int>(byDistance.size());
   const int most = std::min(std::max(k, 8), available);
   std::partial_sort(byDistance.begin(), byDistance.begin() + most, byDistance.end());
-  // Take more than k when the nearest are nearly collinear: grow until well conditioned.
   for (int count = std::min(k, available); count <= most; ++count) {
-    // Least-squares affine from the `count` pairs, centred on their mean for conditioning:
-    // 3x3 normal equations (fixed size; this runs for every corner of every frame).
+    // Centred on the pairs' mean for conditioning; 3x3 normal equations (fixed size).
     cv::Point2d mean(0, 0);
     for (int j = 0; j < count; ++j)
       mean += cv::Point2d(
-          previous[static_cast<std::size_t>(byDistance[static_cast<std::size_t>(j)].second)]
-              .previous);
+          src[static_cast<std::size_t>(byDistance[static_cast<std::size_t>(j)].second)]);
     mean *= 1.0 / count;
     Eigen::Matrix3d AtA = Eigen::Matrix3d::Zero();
     Eigen::Matrix<double, 3, 2> Atb = Eigen::Matrix<double, 3, 2>::Zero();
     for (int j = 0; j < count; ++j) {
-      const PreviousMatch& m =
-          previous[static_cast<std::size_t>(byDistance[static_cast<std::size_t>(j)].second)];
-      const cv::Point2f& r = reference.corners[static_cast<std::size_t>(m.referenceCorner)];
-      const Eigen::Vector3d a(m.previous.x - mean.x, m.previous.y - mean.y, 1.0);
+      const std::size_t i =
+          static_cast<std::size_t>(byDistance[static_cast<std::size_t>(j)].second);
+      const Eigen::Vector3d a(src[i].x - mean.x, src[i].y - mean.y, 1.0);
       AtA += a * a.transpose();
-      Atb.col(0) += a * r.x;
-      Atb.col(1) += a * r.y;
+      Atb.col(0) += a * dst[i].x;
+      Atb.col(1) += a * dst[i].y;
     }
-    // Collinear (or coincident) neighbours: the spread across their line is below ~1 px.
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> spread(AtA.topLeftCorner<2, 2>());
-    if (spread.eigenvalues()(0) < 1.0) continue;
+    // Collinear (or coincident) neighbours: the spread across their line is below ~1 px. The
+    // smaller eigenvalue of the symmetric 2x2 block, in closed form.
+    const double sxx = AtA(0, 0), syy = AtA(1, 1), sxy = AtA(0, 1);
+    const double minSpread =
+        0.5 * (sxx + syy) - std::sqrt(0.25 * (sxx - syy) * (sxx - syy) + sxy * sxy);
+    if (minSpread < 1.0) continue;
     const Eigen::Matrix<double, 3, 2> X = AtA.ldlt().solve(Atb);  // [a11 a21; a12 a22; tx ty]
     const double a11 = X(0, 0), a12 = X(1, 0), a21 = X(0, 1), a22 = X(1, 1);
     const double tx = X(2, 0) - a11 * mean.x - a12 * mean.y;
@@ -89,55 +125,85 @@ bool WideBaselineMatcher::localAffineFrom(cv::Point2d p, const std::vector<Previ
   return false;
 }
 
+}  // namespace
+
+bool WideBaselineMatcher::localAffine(cv::Point2d p, const std::vector<PreviousMatch>& previous,
+                                      const MatchableReference& reference, cv::Matx33d& L) const {
+  std::vector<cv::Point2f> src, dst;
+  std::vector<int> all;
+  for (const PreviousMatch& m : previous) {
+    all.push_back(static_cast<int>(src.size()));
+    src.push_back(m.previous);
+    dst.push_back(reference.corners.at(static_cast<std::size_t>(m.referenceCorner)));
+  }
+  return fitLocalAffine(p, src, dst, all, params_.affineNeighbours, L);
+}
+
 std::vector<WideBaselineMatch> WideBaselineMatcher::match(
-    const cv::Mat& frameF, const std::vector<cv::Point2f>& frameCorners,
-    const cv::Matx33d& H_kToPrev, const std::vector<PreviousMatch>& previous,
-    const MatchableReference& reference) const {
+    const MatchableFrame& frame, const cv::Matx33d& H_kToPrev,
+    const std::vector<PreviousMatch>& previous, const MatchableReference& reference) const {
   std::vector<WideBaselineMatch> matches;
-  if (previous.size() < 3 || frameCorners.empty() || reference.corners.empty()) return matches;
-  const WarpedCorrelation correlation(frameF, reference.imageF, params_.halfWindow);
-  const double scale = resolutionScale(frameF.size());
+  if (previous.size() < 3 || frame.corners.empty() || reference.corners.empty()) return matches;
+  if (frame.halfWindow != params_.halfWindow)
+    throw Error(
+        "WideBaselineMatcher: the frame's windows have n = " + std::to_string(frame.halfWindow) +
+        ", the parameters n = " + std::to_string(params_.halfWindow));
+  const double detH = cv::determinant(H_kToPrev);
+  if (!std::isfinite(detH) || std::abs(detH) < 1e-9) return matches;
+  const cv::Matx33d prevToK = H_kToPrev.inv();
+  const double scale = resolutionScale(frame.size);
   const double hx = params_.dx * scale, hy = params_.dy * scale;
+  const int n = params_.halfWindow, side = 2 * n + 1, count = side * side;
+
+  // Previous matches as pairs (reference pixel -> previous-frame pixel), on a reference grid.
+  std::vector<cv::Point2f> inReference, inPrevious;
+  for (const PreviousMatch& m : previous) {
+    inReference.push_back(reference.corners.at(static_cast<std::size_t>(m.referenceCorner)));
+    inPrevious.push_back(m.previous);
+  }
+  const CornerGrid previousGrid(inReference, reference.imageF.size(), 40);
 
   std::vector<int> candidates, nearby;
-  // The best frame corner per reference corner.
-  std::vector<WideBaselineMatch> best(reference.corners.size());
-  // Previous matches on a grid: the local affine needs only those near each predicted position.
-  std::vector<cv::Point2f> previousPositions;
-  for (const PreviousMatch& m : previous) previousPositions.push_back(m.previous);
-  const CornerGrid previousGrid(previousPositions, frameF.size(), 40);
-  for (int i = 0; i < static_cast<int>(frameCorners.size()); ++i) {
-    const cv::Point2d pK(frameCorners[static_cast<std::size_t>(i)]);
-    const cv::Point2d pPrev = apply(H_kToPrev, pK);
-    cv::Matx33d L;
+  std::vector<float> warped(static_cast<std::size_t>(count));
+  std::vector<WideBaselineMatch> bestPerFrame(frame.corners.size());
+  const int cap = params_.referenceCornersFor(frame.size);
+  int tried = 0;
+  for (const int c : reference.order) {
+    if (cap > 0 && tried >= cap) break;
+    const cv::Point2d pA(reference.corners[static_cast<std::size_t>(c)]);
     // Nearby previous matches: widen the window until at least 8 are found (or all are).
     for (double half = 40.0;; half *= 2.0) {
-      previousGrid.query(pPrev, half, half, nearby);
-      if (nearby.size() >= 8 || nearby.size() == previous.size() || half > 4.0 * frameF.cols) break;
+      previousGrid.query(pA, half, half, nearby);
+      if (nearby.size() >= 8 || nearby.size() == previous.size() ||
+          half > 4.0 * reference.imageF.cols)
+        break;
     }
-    if (!localAffineFrom(pPrev, previous, nearby, reference, L)) continue;
-    const cv::Matx33d W = L * H_kToPrev;
-    const cv::Point2d pA = apply(W, pK);
-    reference.grid.query(pA, hx, hy, candidates);
+    cv::Matx33d LInverse;  // reference -> previous frame
+    if (!fitLocalAffine(pA, inReference, inPrevious, nearby, params_.affineNeighbours, LInverse))
+      continue;
+    const cv::Matx33d referenceToK = prevToK * LInverse;  // W^-1
+    const cv::Point2d pK = apply(referenceToK, pA);
+    if (!(pK.x >= 0 && pK.y >= 0 && pK.x < frame.size.width && pK.y < frame.size.height)) continue;
+    ++tried;
+    frame.grid.query(pK, hx, hy, candidates);
     if (candidates.empty()) continue;
-    const WarpedCorrelation::FramePatch patch =
-        correlation.framePatch(frameCorners[static_cast<std::size_t>(i)]);
-    if (!patch.valid()) continue;
-    double bestScore = params_.minScore;
-    int bestRef = -1;
-    for (int c : candidates) {
-      const double s =
-          correlation.score(patch, W, cv::Point2d(reference.corners[static_cast<std::size_t>(c)]));
+    const cv::Matx33d W = referenceToK.inv();
+    if (!sampleWarpedReferenceWindow(reference.imageF, W, pK, pA, n, warped.data())) continue;
+    float bestScore = static_cast<float>(params_.minScore);
+    int bestFrame = -1;
+    for (int f : candidates) {
+      if (!frame.valid[static_cast<std::size_t>(f)]) continue;
+      const float s = windowScore(frame.window(f), warped.data(), count);
       if (s > bestScore) {
         bestScore = s;
-        bestRef = c;
+        bestFrame = f;
       }
     }
-    if (bestRef < 0) continue;
-    WideBaselineMatch& slot = best[static_cast<std::size_t>(bestRef)];
-    if (slot.frameCorner < 0 || bestScore > slot.score) slot = {i, bestRef, bestScore, pA};
+    if (bestFrame < 0) continue;
+    WideBaselineMatch& slot = bestPerFrame[static_cast<std::size_t>(bestFrame)];
+    if (slot.frameCorner < 0 || bestScore > slot.score) slot = {bestFrame, c, bestScore, pK};
   }
-  for (const WideBaselineMatch& m : best)
+  for (const WideBaselineMatch& m : bestPerFrame)
     if (m.frameCorner >= 0) matches.push_back(m);
   return matches;
 }

@@ -1,10 +1,16 @@
 #pragma once
 // WideBaselineMatcher (paper Sec. 6.2, SPEC §4): matches the corners of the current frame V_k to a
-// reference image far away in viewpoint. For a corner p_k the frame-to-frame homography H
-// (V_k -> V_{k-1}) predicts p'_{k-1} = H p_k; the local affine L of the 3 nearest previous-frame
-// corners that had reference matches maps it on, p'_A = L H p_k = W p_k (Eq. 18); reference
-// corners inside the (2dx+1) x (2dy+1) window around p'_A are scored with the warped correlation
-// of Eq. 19 and the best one above the threshold is kept (each reference corner at most once).
+// reference image far away in viewpoint. The frame-to-frame homography H (V_k -> V_{k-1}) and
+// the local affine L (V_{k-1} -> reference) of the 3 nearest previous matches chain into
+// W = L H (Eq. 18), and candidates are scored with the warped correlation of Eq. 19.
+// Computed from the reference side, so each warped window is sampled once: for every reference
+// corner p_A, L comes from the previous matches nearest p_A, its predicted frame position is
+// p'_k = W^-1 p_A, the reference around p_A is sampled through O W once, and each frame corner
+// inside the (2dx+1) x (2dy+1) window around p'_k scores as the dot product of that window with
+// its own precomputed one (MatchableFrame). The best candidate above the threshold is kept; each
+// frame corner and each reference corner is used at most once. With a cap on the reference
+// corners (WideBaselineParams), corners are taken in MatchableReference::order and those
+// predicted outside the frame do not count.
 #include <opencv2/core.hpp>
 #include <vector>
 
@@ -13,12 +19,35 @@
 
 namespace reftrack {
 
-// A reference image ready for matching: grey float pixels and its corners with a lookup grid.
+// A reference image ready for matching: grey float pixels, its corners with a lookup grid, and
+// the order in which corners are tried: the `preferred` ones (e.g. those with a 3D point) first,
+// each group interleaved over an 8x6 grid so that any prefix is spread over the image.
 struct MatchableReference {
   cv::Mat imageF;  // CV_32FC1
   std::vector<cv::Point2f> corners;
   CornerGrid grid;
-  static MatchableReference build(const cv::Mat& image, std::vector<cv::Point2f> corners);
+  std::vector<int> order;
+  static MatchableReference build(const cv::Mat& image, std::vector<cv::Point2f> corners,
+                                  const std::vector<char>& preferred = {});
+};
+
+// The current frame ready for matching to both references: its corners on a lookup grid and the
+// (2n+1)^2 window around each, sampled once (sampleFrameWindow) and shared by V_A and V_B.
+struct MatchableFrame {
+  cv::Size size;
+  std::vector<cv::Point2f> corners;
+  CornerGrid grid;
+  int halfWindow = 0;
+  std::vector<float> windows;  // (2n+1)^2 floats per corner
+  std::vector<char> valid;     // the window is inside the frame and textured
+  // gray8: CV_8UC1 (a BGR frame is converted).
+  static MatchableFrame build(const cv::Mat& gray8, std::vector<cv::Point2f> corners,
+                              int halfWindow);
+  const float* window(int corner) const {
+    const int side = 2 * halfWindow + 1;
+    return windows.data() +
+           static_cast<std::size_t>(corner) * static_cast<std::size_t>(side * side);
+  }
 };
 
 // A previous-frame corner and the reference corner it was matched to.
@@ -30,7 +59,7 @@ struct PreviousMatch {
 struct WideBaselineMatch {
   int frameCorner = -1, referenceCorner = -1;
   double score = 0.0;
-  cv::Point2d predicted;  // p'_A = W p_k
+  cv::Point2d predicted;  // p'_k = W^-1 p_A: where the reference corner was expected in V_k
 };
 
 class WideBaselineMatcher {
@@ -38,11 +67,9 @@ class WideBaselineMatcher {
   explicit WideBaselineMatcher(WideBaselineParams params) : params_(params) {}
   void setParams(const WideBaselineParams& params) { params_ = params; }
 
-  // frameF: CV_32FC1 current frame; H_kToPrev maps current-frame pixels to the previous frame.
-  // dx, dy are given at 320x240 and scale with the image size (ResolutionScale.hpp).
-  std::vector<WideBaselineMatch> match(const cv::Mat& frameF,
-                                       const std::vector<cv::Point2f>& frameCorners,
-                                       const cv::Matx33d& H_kToPrev,
+  // H_kToPrev maps current-frame pixels to the previous frame. dx, dy are given at 320x240 and
+  // scale with the image size (ResolutionScale.hpp). The frame's half window must be params.n.
+  std::vector<WideBaselineMatch> match(const MatchableFrame& frame, const cv::Matx33d& H_kToPrev,
                                        const std::vector<PreviousMatch>& previous,
                                        const MatchableReference& reference) const;
 
@@ -52,10 +79,6 @@ class WideBaselineMatcher {
                    const MatchableReference& reference, cv::Matx33d& L) const;
 
  private:
-  // localAffine restricted to the previous matches listed in `nearby`.
-  bool localAffineFrom(cv::Point2d p, const std::vector<PreviousMatch>& previous,
-                       const std::vector<int>& nearby, const MatchableReference& reference,
-                       cv::Matx33d& L) const;
   WideBaselineParams params_;
 };
 

@@ -36,6 +36,8 @@ TEST(PoseParams, EveryBadFieldIsNamed) {
       {"pose.alpha", [&](PoseParams& p) { p.alpha = nan; }},
       {"pose.ar_order", [](PoseParams& p) { p.arOrder = 0; }},
       {"pose.translation_sigma", [](PoseParams& p) { p.translationSigma = 0; }},
+      {"pose.translation_sigma", [&](PoseParams& p) { p.translationSigma = nan; }},
+      {"pose.alpha", [](PoseParams& p) { p.alpha = std::numeric_limits<double>::infinity(); }},
       {"pose.rotation_sigma", [&](PoseParams& p) { p.rotationSigma = nan; }},
   };
   for (const auto& [field, mutate] : cases) {

@@ -31,3 +31,25 @@ TEST(ArMotionModel, RejectsBadNoiseAndWeights) {
   EXPECT_THROW(ArMotionModel({w}, ArMotionModel::diagonalNoise(0.001, 0.001)), Error);
   EXPECT_THROW(ArMotionModel({}, ArMotionModel::diagonalNoise(0.001, 0.001)), Error);
 }
+
+// NaN or infinity in the weights or in Q is refused with the entry at fault named.
+TEST(ArMotionModel, NonFiniteEntriesAreNamed) {
+  auto message = [](const std::vector<Vector6d>& weights, const Matrix6d& Q) -> std::string {
+    try {
+      ArMotionModel(weights, Q);
+    } catch (const Error& e) {
+      return e.what();
+    }
+    return "";
+  };
+  const Matrix6d Q = ArMotionModel::diagonalNoise(0.001, 0.001);
+  Vector6d w = Vector6d::Ones();
+  w[4] = INFINITY;
+  EXPECT_NE(message({Vector6d::Ones(), w}, Q).find("lag 2"), std::string::npos);
+  Matrix6d nanQ = Q;
+  nanQ(3, 3) = NAN;
+  EXPECT_NE(message({Vector6d::Ones()}, nanQ).find("Q"), std::string::npos);
+  Matrix6d infQ = Q;
+  infQ(0, 1) = infQ(1, 0) = INFINITY;
+  EXPECT_NE(message({Vector6d::Ones()}, infQ).find("Q"), std::string::npos);
+}

@@ -60,6 +60,7 @@ TEST(EpipolarGuidedMatcher, MatchesOnAPlaneAreCorrectAndTriangulateOntoIt) {
   const EpipolarGuidedMatcher matcher(v.scene.camera, v.T_A, v.T_B);
   const EpipolarMatchResult r = matcher.match(v.grayA, v.cornersA, v.grayB, v.cornersB);
   const Eigen::Matrix3d H = v.scene.homographyAtoB(v.T_A, v.T_B);
+  const RigidPose T_AB = v.T_B * v.T_A.inverse();
   // Plane z = 0 in camera A: normal n = R_A e_z, offset n . t_A.
   const Eigen::Vector3d n = v.T_A.rotation().col(2);
   const double d = n.dot(v.T_A.translation());
@@ -67,10 +68,16 @@ TEST(EpipolarGuidedMatcher, MatchesOnAPlaneAreCorrectAndTriangulateOntoIt) {
   double planeSq = 0.0;
   for (const ReferenceMatch& m : r.matches) {
     const cv::Point2f a = v.cornersA[static_cast<size_t>(m.cornerA)];
-    const cv::Point2f b = v.cornersB[static_cast<size_t>(m.cornerB)];
     const Eigen::Vector3d q = H * Eigen::Vector3d(a.x, a.y, 1.0);
-    // Corner positions are good to a few tenths of a pixel; 1.5 px separates right from wrong.
-    if ((q.head<2>() / q.z() - Eigen::Vector2d(b.x, b.y)).norm() > 1.5) ++wrong;
+    // The match's point seen from B (it is triangulated from A's corner and the correlation
+    // peak next to B's corner, which may lie up to maxPeakOffsetPx from it) against where the
+    // plane sends A's corner: corners are good to a few tenths of a pixel, so 1.5 px separates
+    // right from wrong. Wrong matches are counted (below) and kept out of the accuracy figure.
+    const Eigen::Vector2d b = v.scene.camera.project(T_AB * m.pointA);
+    if ((q.head<2>() / q.z() - b).norm() > 1.5) {
+      ++wrong;
+      continue;
+    }
     const double off = n.dot(m.pointA) - d;
     planeSq += off * off;
   }
@@ -79,7 +86,7 @@ TEST(EpipolarGuidedMatcher, MatchesOnAPlaneAreCorrectAndTriangulateOntoIt) {
   EXPECT_EQ(r.scores.size(), r.matches.size());
   EXPECT_LE(wrong, r.stats.kept / 100) << wrong << " wrong of " << r.stats.kept;
   // At 1 m with a 25 cm baseline a 0.2 px disparity error is ~1.3 mm of depth.
-  EXPECT_LT(std::sqrt(planeSq / r.stats.kept), 0.002);
+  EXPECT_LT(std::sqrt(planeSq / (r.stats.kept - wrong)), 0.002);
   EXPECT_LT(r.stats.reprojectionRmsPx, 0.3);
   EXPECT_EQ(r.stats.kept + r.stats.droppedAmbiguous + r.stats.droppedPeakOffset +
                 r.stats.droppedBehindCamera + r.stats.droppedOutsideDepthRange +
@@ -125,7 +132,9 @@ TEST(EpipolarGuidedMatcher, DropsAreCountedPerReason) {
                      .match(v.grayA, v.cornersA, v.grayB, v.cornersB)
                      .stats;
   EXPECT_EQ(p.kept, 0);
-  EXPECT_EQ(p.droppedLowParallax, base.kept + base.droppedReprojection + base.droppedLowParallax);
+  // (A wrong match can have a large parallax: it then meets the reprojection test in both runs.)
+  EXPECT_EQ(p.droppedLowParallax + p.droppedReprojection,
+            base.kept + base.droppedReprojection + base.droppedLowParallax);
   EXPECT_EQ(p.droppedAmbiguous, base.droppedAmbiguous);
 
   // The reprojection test runs last: a bar below the corners' own noise moves kept matches only.

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <functional>
+#include <limits>
 #include <opencv2/imgproc.hpp>
 
 #include "PlaneWorld.hpp"
@@ -53,6 +55,122 @@ TEST(PoseTracker, BlackAndTexturelessFramesAreLostAndRecoveryFollows) {
   EXPECT_EQ(back.state, TrackingState::Tracking) << back.message;
 }
 
+// Worst image displacement (pixels) of the vertices of a 10 cm cube about 1 m in front of camera
+// A between the estimated and the true T_Ak: the error a user sees on drawn 3D content.
+double cubeVertexErrorPx(const PlaneWorld& world, const RigidPose& estimate,
+                         const RigidPose& truth) {
+  double worst = 0.0;
+  for (int v = 0; v < 8; ++v) {
+    const Eigen::Vector3d X(v & 1 ? 0.05 : -0.05, v & 2 ? 0.05 : -0.05, v & 4 ? 1.05 : 0.95);
+    const Eigen::Vector3d a = world.K * (estimate * X), b = world.K * (truth * X);
+    worst = std::max(worst, (a.hnormalized() - b.hnormalized()).norm());
+  }
+  return worst;
+}
+
+cv::Mat motionBlurred(const cv::Mat& image, int lengthPx) {
+  const cv::Mat kernel(1, lengthPx, CV_32F, cv::Scalar(1.0 / lengthPx));
+  cv::Mat out;
+  cv::filter2D(image, out, -1, kernel, cv::Point(-1, -1), 0, cv::BORDER_REPLICATE);
+  return out;
+}
+
+cv::Mat gaussianBlurred(const cv::Mat& image, double sigmaPx) {
+  cv::Mat out;
+  cv::GaussianBlur(image, out, cv::Size(), sigmaPx, sigmaPx, cv::BORDER_REPLICATE);
+  return out;
+}
+
+// A tracked sequence, then frames smeared by a 31-px motion kernel or a Gaussian of SD 8 px (the
+// image moves ~10x more during the exposure than a corner window is wide): the frame carries no
+// reliable support for a pose, so it must be lost with a reason and without a pose, and sharp
+// frames afterwards track again.
+TEST(PoseTracker, HeavilyBlurredFramesAreLostWithoutAPose) {
+  const PlaneWorld world;
+  PoseTracker tracker(world.map(), TrackerParams{});
+  for (int k = 0; k <= 3; ++k)
+    ASSERT_EQ(tracker.process(world.render(pathPose(k), 10 + k)).state, TrackingState::Tracking);
+  const std::vector<std::pair<std::string, cv::Mat>> blurred = {
+      {"31-px motion blur", motionBlurred(world.render(pathPose(4), 14), 31)},
+      {"Gaussian blur SD 8 px", gaussianBlurred(world.render(pathPose(5), 15), 8.0)},
+      {"31-px vertical motion blur", motionBlurred(world.render(pathPose(6), 16).t(), 31).t()},
+  };
+  for (const auto& [what, frame] : blurred) {
+    const PoseTrackingResult r = tracker.process(frame);
+    EXPECT_EQ(r.state, TrackingState::Lost) << what << ": " << r.message;
+    EXPECT_FALSE(r.worldToCamera.has_value()) << what;
+    EXPECT_FALSE(r.T_Ak.has_value()) << what;
+    EXPECT_FALSE(r.message.empty()) << what;
+    RecordProperty(what, r.message);
+  }
+  // Sharp again near V_A: initialised anew and tracking.
+  const PoseTrackingResult back = tracker.process(world.render(pathPose(1), 17));
+  EXPECT_EQ(back.state, TrackingState::Tracking) << back.message;
+}
+
+// The 31-px motion-blurred frame keeps ~17 inliers whose pose is ~7 px wrong (measured with both
+// gates off); the reprojection-RMS gate rejects it only narrowly (3.3 px against 3.0). The
+// support check alone, with the RMS gate out of the way, must refuse it: the matches fix the
+// scene's image position only to ~1 px (SD), against ~0.1-0.2 px on sharp frames.
+TEST(PoseTracker, SupportCheckAloneRefusesAHeavilyBlurredFrame) {
+  const PlaneWorld world;
+  PoseTrackerLimits limits;
+  limits.maxRmsPx = 1e6;
+  // Only the strong corners (corners.quality): with the weak ones too, the blurred frame is
+  // already refused for too few inliers (measured: 2) before the support check is reached.
+  TrackerParams params;
+  params.wideBaseline.frameCornerQuality = params.corners.quality;
+  PoseTracker tracker(world.map(), params, limits);
+  for (int k = 0; k <= 3; ++k) {
+    const PoseTrackingResult r = tracker.process(world.render(pathPose(k), 10 + k));
+    ASSERT_EQ(r.state, TrackingState::Tracking) << r.message;
+    EXPECT_LT(r.supportSdPx, 0.3) << "sharp frame " << k;  // limit 0.5 px at 640x480
+  }
+  const PoseTrackingResult r = tracker.process(motionBlurred(world.render(pathPose(4), 14), 31));
+  EXPECT_EQ(r.state, TrackingState::Lost) << r.message;
+  EXPECT_FALSE(r.T_Ak.has_value());
+  EXPECT_NE(r.message.find("support"), std::string::npos) << r.message;
+  RecordProperty("message", r.message);
+}
+
+// Moderate blur within a tracked sequence: every frame either tracks with a small cube-vertex
+// error or is lost; a reported pose is never wrong. 1.5 px is the product's 95th-percentile
+// target; sharp frames of this scene measure well under 0.2 px, a wrong pose several pixels.
+TEST(PoseTracker, ModeratelyBlurredFramesTrackAccuratelyOrAreLost) {
+  const PlaneWorld world;
+  PoseTracker tracker(world.map(), TrackerParams{});
+  int tracked = 0, frames = 0;
+  auto step = [&](int k, const cv::Mat& frame, const std::string& what) {
+    const PoseTrackingResult r = tracker.process(frame);
+    ++frames;
+    if (r.state != TrackingState::Tracking) {
+      EXPECT_FALSE(r.T_Ak.has_value()) << what;
+      return;
+    }
+    ++tracked;
+    ASSERT_TRUE(r.T_Ak.has_value()) << what;
+    EXPECT_LT(cubeVertexErrorPx(world, *r.T_Ak, pathPose(k)), 1.5) << what << " frame " << k;
+  };
+  int k = 0;
+  for (int length : {3, 5, 7, 9, 13}) {
+    step(k, world.render(pathPose(k), 30 + k), "sharp");
+    ++k;
+    step(k, motionBlurred(world.render(pathPose(k), 30 + k), length),
+         std::to_string(length) + "-px motion blur");
+    ++k;
+  }
+  for (double sigma : {0.7, 1.0, 1.5, 2.0, 3.0}) {
+    step(k, world.render(pathPose(k), 30 + k), "sharp");
+    ++k;
+    step(k, gaussianBlurred(world.render(pathPose(k), 30 + k), sigma),
+         "Gaussian blur SD " + std::to_string(sigma));
+    ++k;
+  }
+  // The sharp frames and the mildest blurs track: the check must not reject everything.
+  EXPECT_GE(tracked, frames / 2) << tracked << " of " << frames;
+  RecordProperty("tracked", std::to_string(tracked) + " of " + std::to_string(frames));
+}
+
 TEST(PoseTracker, AFrameOfTheWrongSizeIsAClearError) {
   const PlaneWorld world;
   PoseTracker tracker(world.map(), TrackerParams{});
@@ -62,6 +180,36 @@ TEST(PoseTracker, AFrameOfTheWrongSizeIsAClearError) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("320x240"), std::string::npos) << e.what();
   }
+}
+
+// NaN or infinity in any limit is refused by check() with the field's name, and the tracker
+// refuses such limits at construction.
+TEST(PoseTrackerLimits, NonFiniteOrOutOfRangeFieldsAreNamed) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  const std::vector<std::pair<std::string, std::function<void(PoseTrackerLimits&)>>> cases = {
+      {"min_corners", [](PoseTrackerLimits& l) { l.minCorners = 3; }},
+      {"min_inliers", [](PoseTrackerLimits& l) { l.minInliers = 2; }},
+      {"gate_px", [&](PoseTrackerLimits& l) { l.gatePx = nan; }},
+      {"max_rms_px", [&](PoseTrackerLimits& l) { l.maxRmsPx = inf; }},
+      {"max_sigma_translation", [&](PoseTrackerLimits& l) { l.maxSigmaTranslation = nan; }},
+      {"ransac_iterations", [](PoseTrackerLimits& l) { l.ransacIterations = 0; }},
+      {"min_epipolar_baseline", [&](PoseTrackerLimits& l) { l.minEpipolarBaseline = nan; }},
+  };
+  for (const auto& [field, mutate] : cases) {
+    PoseTrackerLimits l;
+    mutate(l);
+    try {
+      l.check();
+      ADD_FAILURE() << field << " was accepted";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
+    }
+  }
+  PoseTrackerLimits bad;
+  bad.gatePx = nan;
+  const PlaneWorld world;
+  EXPECT_THROW(PoseTracker(world.map(), TrackerParams{}, bad), Error);
 }
 
 }  // namespace

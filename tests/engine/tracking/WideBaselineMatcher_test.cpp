@@ -43,11 +43,11 @@ TEST(WideBaselineMatcher, MatchesAcrossAStrongViewpointChange) {
     }
   ASSERT_GT(previous.size(), 30u);
 
-  cv::Mat frameF;
-  frame.convertTo(frameF, CV_32F);
-  const WideBaselineMatcher matcher(WideBaselineParams{});
-  const std::vector<WideBaselineMatch> matches =
-      matcher.match(frameF, positionsOf(frameCorners), H, previous, ref);
+  const WideBaselineParams params;
+  const MatchableFrame frameWindows =
+      MatchableFrame::build(frame, positionsOf(frameCorners), params.halfWindow);
+  const WideBaselineMatcher matcher(params);
+  const std::vector<WideBaselineMatch> matches = matcher.match(frameWindows, H, previous, ref);
   int correct = 0, wrong = 0, matchable = 0;
   for (int t : trueRef) matchable += t >= 0;
   for (const WideBaselineMatch& m : matches) {
