@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <memory>
 
+#include "app/cli/ParsingValidator.hpp"
 #include "app/cli/ProgressBar.hpp"
 #include "app/commands/Commands.hpp"
 #include "engine/calibration/CalibrationInput.hpp"
@@ -61,16 +62,7 @@ CommandRegistration registerCalibrateCommand(CLI::App& parent) {
                   "chessboard:COLSxROWS:SQUARE_M (inner corners) or "
                   "charuco:DICT:SQXxSQY:SQUARE_M:MARKER_M")
       ->required()
-      ->check(CLI::Validator(
-          [](std::string& text) {
-            try {
-              CalibrationBoard::parse(text);
-            } catch (const Error& e) {
-              return std::string(e.what());
-            }
-            return std::string();
-          },
-          "BOARD"));
+      ->check(parsingValidator<CalibrationBoard>("BOARD"));
   sub->add_option("--input", options->input,
                   "a folder of images, a glob pattern (quote it) or a video file")
       ->required();

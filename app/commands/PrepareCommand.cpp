@@ -6,6 +6,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <optional>
 
+#include "app/cli/ParsingValidator.hpp"
 #include "app/commands/Commands.hpp"
 #include "engine/core/Error.hpp"
 #include "engine/geometry/PinholeCamera.hpp"
@@ -100,16 +101,7 @@ CommandRegistration registerPrepareCommand(CLI::App& parent) {
       ->check(CLI::ExistingFile);
   CLI::Option* marker = sub->add_option("--marker", options->marker,
                                         "marker DICT:ID:SIDE_M, e.g. DICT_6X6_250:23:0.2")
-                            ->check(CLI::Validator(
-                                [](std::string& text) {
-                                  try {
-                                    MarkerSpec::parse(text);
-                                  } catch (const Error& e) {
-                                    return std::string(e.what());
-                                  }
-                                  return std::string();
-                                },
-                                "MARKER"));
+                            ->check(parsingValidator<MarkerSpec>("MARKER"));
   CLI::Option* poses =
       sub->add_option("--poses", options->poses, "TUM file with the poses of A and B (first two)")
           ->check(CLI::ExistingFile);

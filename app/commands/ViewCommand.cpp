@@ -7,6 +7,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "app/cli/ImageSizeValidator.hpp"
+#include "app/cli/ParsingValidator.hpp"
 #include "app/commands/Commands.hpp"
 #include "app/simulator/SimulationOptions.hpp"
 #include "app/viewer/HomographyFrameTracker.hpp"
@@ -77,16 +78,7 @@ CommandRegistration registerViewCommand(CLI::App& parent) {
   sub->add_option("--calibrate", o.calibrateBoard,
                   "Live calibration with this board: chessboard:COLSxROWS:SQUARE_M (inner "
                   "corners) or charuco:DICT:SQXxSQY:SQUARE_M:MARKER_M")
-      ->check(CLI::Validator(
-          [](std::string& text) {
-            try {
-              CalibrationBoard::parse(text);
-            } catch (const Error& e) {
-              return std::string(e.what());
-            }
-            return std::string();
-          },
-          "BOARD"));
+      ->check(parsingValidator<CalibrationBoard>("BOARD"));
   sub->add_option("--calibrate-every", o.calibrateEvery,
                   "Auto-capture a view every N frames while the board is found (headless: "
                   "default 1)")
