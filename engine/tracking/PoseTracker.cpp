@@ -88,6 +88,27 @@ PreparedReference prepare(const cv::Mat& image, const std::vector<ReferenceCorne
   return r;
 }
 
+// Initialisation under a scale hypothesis s: the frame was taken farther from (s > 1) or nearer
+// to (s < 1) the scene than the reference, along about the same line of sight. Each frame
+// window is resampled at 1/s so that it looks like the reference, and candidates are searched
+// around c + s (p - c), c the image centre. Returns (frame corner, reference corner) pairs.
+std::vector<CornerMatch> matchAtScale(const NarrowBaselineMatcher& narrow, const cv::Mat& gray,
+                                      const std::vector<cv::Point2f>& pixels,
+                                      const PreparedReference& ref, double s) {
+  const int half = narrow.params().halfWindow;
+  const float inv = static_cast<float>(1.0 / s);
+  const NccPatches frameWindows = NccPatches::warped(
+      gray, pixels, std::vector<cv::Matx22f>(pixels.size(), cv::Matx22f(inv, 0, 0, inv)), half);
+  const std::vector<cv::Point2f> refPixels = positionsOf(ref.asCorners);
+  const NccPatches refWindows = NccPatches::square(ref.gray, refPixels, half);
+  const double cx = (gray.cols - 1) * 0.5, cy = (gray.rows - 1) * 0.5;
+  const cv::Matx33d frameToRef(s, 0, cx * (1 - s), 0, s, cy * (1 - s), 0, 0, 1);
+  const double r = resolutionScale(gray.size());
+  return narrow.match(pixels, frameWindows, refPixels, refWindows,
+                      narrow.params().searchHalfWidthPx * r, narrow.params().searchHalfHeightPx * r,
+                      frameToRef);
+}
+
 // Point-to-epipolar-line distances for a match under F (reference camera -> current camera).
 double maxEpipolarDistance(const Eigen::Matrix3d& F, const Eigen::Vector2d& pRef,
                            const Eigen::Vector2d& pK) {
@@ -117,6 +138,10 @@ struct PoseTracker::Impl {
   std::vector<cv::Point2f> prevF2F;
   NccPatches prevF2FWindows;
   std::vector<PreviousMatch> prevA, prevB;
+  // While not tracking, each frame also tries the next of these scale hypotheses (see
+  // matchAtScale) when matching at the reference's own scale finds too little.
+  static constexpr double kInitScales[] = {2.0, 1.5, 0.6, 0.75, 2.5};
+  std::size_t nextInitScale = 0;
 
   Impl(ReferenceMap m, const TrackerParams& p, PoseTrackerLimits l)
       : map(std::move(m)), params(p), limits(l) {
@@ -255,8 +280,19 @@ PoseTrackingResult PoseTracker::Impl::process(const cv::Mat& frame) {
     // Initialisation (paper Sec. 6.2): narrow-baseline matching to V_A; V_B follows through the
     // stored A<->B matches. A frame near V_B initialises symmetrically.
     t = Clock::now();
-    const std::vector<CornerMatch> nA = narrow.match(gray, corners, refA.gray, refA.asCorners);
-    const std::vector<CornerMatch> nB = narrow.match(gray, corners, refB.gray, refB.asCorners);
+    std::vector<CornerMatch> nA = narrow.match(gray, corners, refA.gray, refA.asCorners);
+    std::vector<CornerMatch> nB = narrow.match(gray, corners, refB.gray, refB.asCorners);
+    if (nA.size() + nB.size() < static_cast<std::size_t>(4 * limits.minInliers)) {
+      // Paper Sec. 6.2 starts only from a frame near V_A; a frame along the same line of sight
+      // but at another distance starts too once its windows are resampled to the right scale.
+      const double s = kInitScales[nextInitScale++ % std::size(kInitScales)];
+      std::vector<CornerMatch> sA = matchAtScale(narrow, gray, pixels, refA, s);
+      std::vector<CornerMatch> sB = matchAtScale(narrow, gray, pixels, refB, s);
+      if (sA.size() + sB.size() > nA.size() + nB.size()) {
+        nA = std::move(sA);
+        nB = std::move(sB);
+      }
+    }
     for (const CornerMatch& m : nA) mA.push_back({m.first, m.second, m.score, {}});
     for (const CornerMatch& m : nB) mB.push_back({m.first, m.second, m.score, {}});
     r.timings.push_back({"initialise", msSince(t)});

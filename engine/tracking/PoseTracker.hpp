@@ -4,10 +4,12 @@
 // (WideBaselineMatcher), three-view pairs through the map's A<->B matches, outlier rejection by
 // PnP-RANSAC on the 3D-2D pairs and an epipolar gate, then the pose x_Ak from the standard or the
 // regularised estimator (TemporalRegularizer). Not tracking: initialisation by narrow-baseline
-// matching to V_A (or V_B) and V_B through the stored matches. Never reports a pose without
-// enough inlier support (count, residual RMS, covariance and PoseSupport's reprojection SD, which
-// rejects black, textureless and heavily blurred frames): the frame is `Lost` instead, with the
-// reason.
+// matching to V_A (or V_B) and V_B through the stored matches, and when that finds too little,
+// with the frame's windows resampled for one of a few distance ratios per frame (a start from
+// farther away or nearer than the reference, along about its line of sight). Never reports a pose
+// without enough inlier support (count, residual RMS, covariance and PoseSupport's reprojection SD,
+// which rejects black, textureless and heavily blurred frames): the frame is `Lost` instead, with
+// the reason.
 #include <memory>
 #include <optional>
 #include <string>
