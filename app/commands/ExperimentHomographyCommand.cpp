@@ -76,7 +76,7 @@ void runRotation(const ExperimentArgs& a, cv::Size size, const TrackerParams& pa
   std::vector<double> angle, success, meanError, medianError;
   for (const RotationStep& s : steps) {
     const double rate = 100.0 * s.successes / std::max(1, s.trials);
-    std::printf("%-9.1f %-9.2f %-8.0f%% %-9d %-15.4f %-15.4f %-15.4f %-9.3f\n", s.angleDeg,
+    std::printf("%-9.1f %-9.2f %5.0f%%    %-9d %-15.4f %-15.4f %-15.4f %-9.3f\n", s.angleDeg,
                 s.overlap, rate, s.trackedButWrong, s.meanErrorPx, s.medianErrorPx, s.maxErrorPx,
                 s.medianMs);
     angle.push_back(s.angleDeg);
