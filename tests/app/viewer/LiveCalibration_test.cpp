@@ -18,13 +18,7 @@ using namespace reftrack::app;
 
 namespace {
 
-const cv::Size kSize(640, 480);
-
-Eigen::Matrix3d trueK() {
-  Eigen::Matrix3d K;
-  K << 620.0, 0, 322.5, 0, 610.0, 236.8, 0, 0, 1;
-  return K;
-}
+const cv::Size kSize = test::kBoardViewSize;
 
 // The viewer's frames are BGR.
 std::vector<Frame> boardFrames(int count) {
@@ -34,8 +28,8 @@ std::vector<Frame> boardFrames(int count) {
   std::vector<Frame> frames;
   for (int i = 0; i < count; ++i) {
     Frame f;
-    cv::cvtColor(test::renderBoardView(board, texture, 64, trueK(), kSize, poses[i], i), f.image,
-                 cv::COLOR_GRAY2BGR);
+    cv::cvtColor(test::renderBoardView(board, texture, 64, test::boardViewK(), kSize, poses[i], i),
+                 f.image, cv::COLOR_GRAY2BGR);
     f.index = i;
     frames.push_back(std::move(f));
   }

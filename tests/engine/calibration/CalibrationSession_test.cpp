@@ -15,20 +15,15 @@ using namespace reftrack;
 
 namespace {
 
-const cv::Size kSize(640, 480);
+const cv::Size kSize = test::kBoardViewSize;
 constexpr int kPixelsPerSquare = 64;
-
-Eigen::Matrix3d trueK() {
-  Eigen::Matrix3d K;
-  K << 620.0, 0, 322.5, 0, 610.0, 236.8, 0, 0, 1;
-  return K;
-}
 
 CalibrationBoard chessboard() { return CalibrationBoard::parse("chessboard:9x6:0.025"); }
 
 cv::Mat view(const CalibrationBoard& board, const RigidPose& pose, int seed) {
   static const cv::Mat texture = test::chessboardTexture(board, kPixelsPerSquare);
-  return test::renderBoardView(board, texture, kPixelsPerSquare, trueK(), kSize, pose, seed);
+  return test::renderBoardView(board, texture, kPixelsPerSquare, test::boardViewK(), kSize, pose,
+                               seed);
 }
 
 }  // namespace
@@ -56,11 +51,7 @@ TEST(CalibrationSession, RecoversIntrinsicsFromSyntheticViews) {
   ASSERT_EQ(r.views.size(), 15u);
   EXPECT_EQ(r.views[0].label, "view 1");
   // The bar: fx, fy, cx, cy within 0.5% of the rendering camera.
-  const Eigen::Matrix3d K = trueK();
-  EXPECT_NEAR(r.camera.fx(), K(0, 0), 0.005 * K(0, 0));
-  EXPECT_NEAR(r.camera.fy(), K(1, 1), 0.005 * K(1, 1));
-  EXPECT_NEAR(r.camera.cx(), K(0, 2), 0.005 * K(0, 2));
-  EXPECT_NEAR(r.camera.cy(), K(1, 2), 0.005 * K(1, 2));
+  test::expectIntrinsicsNear(r.camera, test::boardViewK(), 0.005);
   // Rendered corners are exact up to interpolation and 2-grey-level noise: well under 0.2 px.
   EXPECT_LT(r.rmsPx, 0.2);
   std::printf("session synthetic: fx %.3f fy %.3f cx %.3f cy %.3f rms %.4f px, coverage %.2f\n",

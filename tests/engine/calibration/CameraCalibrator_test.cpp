@@ -13,13 +13,7 @@ using namespace reftrack;
 
 namespace {
 
-const cv::Size kSize(640, 480);
-
-Eigen::Matrix3d trueK() {
-  Eigen::Matrix3d K;
-  K << 620.0, 0, 322.5, 0, 610.0, 236.8, 0, 0, 1;
-  return K;
-}
+const cv::Size kSize = test::kBoardViewSize;
 
 void addSyntheticViews(CameraCalibrator& calibrator, const CalibrationBoard& board) {
   const int pps = 64;
@@ -29,13 +23,14 @@ void addSyntheticViews(CameraCalibrator& calibrator, const CalibrationBoard& boa
     // Every inner corner must be in the image, or the pose list is wrong (not the calibrator).
     for (const cv::Point3f& c : board.allCornerPositions()) {
       const Eigen::Vector3d X = pose * Eigen::Vector3d(c.x, c.y, c.z);
-      const Eigen::Vector3d p = trueK() * X;
+      const Eigen::Vector3d p = test::boardViewK() * X;
       ASSERT_GT(p.x() / p.z(), 5.0);
       ASSERT_LT(p.x() / p.z(), kSize.width - 6.0);
       ASSERT_GT(p.y() / p.z(), 5.0);
       ASSERT_LT(p.y() / p.z(), kSize.height - 6.0);
     }
-    const cv::Mat img = test::renderBoardView(board, texture, pps, trueK(), kSize, pose, i);
+    const cv::Mat img =
+        test::renderBoardView(board, texture, pps, test::boardViewK(), kSize, pose, i);
     EXPECT_TRUE(calibrator.addImage(img, "view" + std::to_string(i))) << "view " << i;
     ++i;
   }
@@ -58,11 +53,7 @@ TEST(CameraCalibrator, RecoversIntrinsicsFromSyntheticViews) {
   EXPECT_EQ(r.rejected[0], "blank");
   EXPECT_EQ(r.imagesExamined, 16u);
   // The bar: fx, fy, cx, cy within 0.5% of the rendering camera.
-  const Eigen::Matrix3d K = trueK();
-  EXPECT_NEAR(r.camera.fx(), K(0, 0), 0.005 * K(0, 0));
-  EXPECT_NEAR(r.camera.fy(), K(1, 1), 0.005 * K(1, 1));
-  EXPECT_NEAR(r.camera.cx(), K(0, 2), 0.005 * K(0, 2));
-  EXPECT_NEAR(r.camera.cy(), K(1, 2), 0.005 * K(1, 2));
+  test::expectIntrinsicsNear(r.camera, test::boardViewK(), 0.005);
   // Rendered corners are exact up to interpolation and 2-grey-level noise: well under 0.2 px.
   EXPECT_LT(r.rmsPx, 0.2);
   for (const CalibrationViewError& v : r.views) {
@@ -101,7 +92,7 @@ TEST(CameraCalibrator, ExplainsMissingOrTooFewViews) {
   }
   CameraCalibrator few(board);
   const cv::Mat texture = test::chessboardTexture(board, 64);
-  few.addImage(test::renderBoardView(board, texture, 64, trueK(), kSize,
+  few.addImage(test::renderBoardView(board, texture, 64, test::boardViewK(), kSize,
                                      test::variedBoardPoses(board)[0], 1),
                "one");
   EXPECT_THROW(few.addImage(cv::Mat(cv::Size(320, 240), CV_8UC1), "small"), Error);

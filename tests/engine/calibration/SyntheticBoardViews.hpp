@@ -2,6 +2,8 @@
 // Synthetic chessboard photographs for the calibration tests: a high-resolution board texture
 // warped by the exact plane homography K [r1 r2 t] (exact for a plane), rendered at 3x the
 // resolution with K scaled about pixel centres and area-averaged down, plus mild sensor noise.
+#include <gtest/gtest.h>
+
 #include <Eigen/Geometry>
 #include <cmath>
 #include <numbers>
@@ -9,9 +11,27 @@
 #include <vector>
 
 #include "engine/calibration/CalibrationBoard.hpp"
+#include "engine/geometry/PinholeCamera.hpp"
 #include "engine/geometry/RigidPose.hpp"
 
 namespace reftrack::test {
+
+// The camera the calibration tests render with, and must recover.
+inline const cv::Size kBoardViewSize(640, 480);
+inline Eigen::Matrix3d boardViewK() {
+  Eigen::Matrix3d K;
+  K << 620.0, 0, 322.5, 0, 610.0, 236.8, 0, 0, 1;
+  return K;
+}
+
+// fx, fy, cx and cy of `camera` each within `fraction` of K's.
+inline void expectIntrinsicsNear(const PinholeCamera& camera, const Eigen::Matrix3d& K,
+                                 double fraction) {
+  EXPECT_NEAR(camera.fx(), K(0, 0), fraction * K(0, 0));
+  EXPECT_NEAR(camera.fy(), K(1, 1), fraction * K(1, 1));
+  EXPECT_NEAR(camera.cx(), K(0, 2), fraction * K(0, 2));
+  EXPECT_NEAR(camera.cy(), K(1, 2), fraction * K(1, 2));
+}
 
 // Texture of a chessboard board with a one-square white margin; `pixelsPerSquare` per square.
 inline cv::Mat chessboardTexture(const CalibrationBoard& board, int pixelsPerSquare) {
