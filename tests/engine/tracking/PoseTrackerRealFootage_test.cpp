@@ -74,13 +74,12 @@ double pnp(const std::vector<cv::Point3f>& object, const std::array<cv::Point2f,
   return std::sqrt(sum / static_cast<double>(pts.size()));
 }
 
+// solvePnP's (rvec, tvec) is RigidPose's 6-vector (translation, axis-angle).
 RigidPose toPose(const cv::Mat& rvec, const cv::Mat& tvec) {
-  cv::Mat R;
-  cv::Rodrigues(rvec, R);
-  Eigen::Matrix3d Re;
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) Re(r, c) = R.at<double>(r, c);
-  return RigidPose(Re, Eigen::Vector3d(tvec.at<double>(0), tvec.at<double>(1), tvec.at<double>(2)));
+  Vector6d x;
+  x << tvec.at<double>(0), tvec.at<double>(1), tvec.at<double>(2), rvec.at<double>(0),
+      rvec.at<double>(1), rvec.at<double>(2);
+  return RigidPose::fromVector6(x);
 }
 
 class PoseTrackerRealFootage : public ::testing::Test {
