@@ -17,7 +17,7 @@ namespace {
 
 struct TrackArgs {
   std::string mode;  // empty: chosen from the other options
-  std::filesystem::path reference, map, labels, csv, record, trajectory, params, motion;
+  std::filesystem::path reference, map, labels, camera, csv, record, trajectory, params, motion;
   std::string input;
   int frames = -1;
   double cube = 0.1;
@@ -47,6 +47,7 @@ void checkModeOptions(const TrackArgs& a, TrackingMode mode) {
     if (a.map.empty()) throw CLI::ValidationError("--map", "is required in 6dof mode");
     forbid(!a.reference.empty(), "--reference", "6dof");
     forbid(!a.labels.empty(), "--labels", "6dof");
+    forbid(!a.camera.empty(), "--camera", "6dof (the map holds the camera)");
   }
 }
 
@@ -62,6 +63,10 @@ CommandRegistration registerTrackCommand(CLI::App& parent) {
   sub->add_option("--reference", args->reference, "Homography: the stored reference frame")
       ->check(CLI::ExistingFile);
   sub->add_option("--labels", args->labels, "Homography: labels YAML (text, x, y per label)")
+      ->check(CLI::ExistingFile);
+  sub->add_option("--camera", args->camera,
+                  "Homography: camera.yml of the reference's camera (enables the rotation-only "
+                  "model for frames that barely overlap the reference)")
       ->check(CLI::ExistingFile);
   sub->add_option("--map", args->map, "6dof: folder written by `reftrack prepare`")
       ->check(CLI::ExistingDirectory);
@@ -106,6 +111,7 @@ CommandRegistration registerTrackCommand(CLI::App& parent) {
             o.reference = args->reference;
             o.input = args->input;
             o.labels = args->labels;
+            o.camera = args->camera;
             o.params = args->params;
             o.csv = args->csv;
             o.record = args->record;

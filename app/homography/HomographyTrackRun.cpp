@@ -37,10 +37,13 @@ HomographyTrackSummary runHomographyTrack(const HomographyTrackOptions& o) {
   sourceOptions.simSize = reference.size();
   std::unique_ptr<FrameSource> source = openFrameSource(o.input, sourceOptions);
 
-  HomographyFrameTracker tracker(reference, params, std::nullopt, labels);
-  // The overlay needs a camera of the frame size; homography mode draws no 3-D content, so any
-  // pinhole of that size serves.
-  const PinholeCamera camera = PinholeCamera::fromFieldOfView(reference.size(), 60.0);
+  // A calibrated camera enables the rotation-only model; without one, the overlay still needs a
+  // camera of the frame size (homography mode draws no 3-D content, so any pinhole serves).
+  const std::optional<PinholeCamera> calibrated =
+      o.camera.empty() ? std::nullopt : std::optional<PinholeCamera>(PinholeCamera::load(o.camera));
+  HomographyFrameTracker tracker(reference, params, calibrated, labels);
+  const PinholeCamera camera =
+      calibrated ? *calibrated : PinholeCamera::fromFieldOfView(reference.size(), 60.0);
   std::unique_ptr<HomographyOverlay> overlay;
   std::unique_ptr<VideoRecorder> recorder;
   const OverlaySettings settings;

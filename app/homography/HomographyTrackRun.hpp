@@ -12,6 +12,7 @@ struct HomographyTrackOptions {
   std::filesystem::path reference;  // the stored frame (image file)
   std::string input;                // video file, image folder/glob, camera:N, sim:PRESET
   std::filesystem::path labels;     // optional AnnotationSet YAML
+  std::filesystem::path camera;     // optional camera.yml (K: rotation-only model)
   std::filesystem::path params;     // optional TrackerParams YAML
   std::filesystem::path csv;        // per-frame CSV; empty = none
   std::filesystem::path record;     // MP4 of the registered overlay; empty = none

@@ -5,8 +5,9 @@
 // noised reference with a freshly noised rotated frame and registers them cold (unguided), as
 // the paper did. The true homography K R K^-1 gives exact annotation ground truth: the error is
 // the mean deviation of a grid of reference annotations that lie inside the frame. A trial
-// succeeds when it is tracked and that error is small; tracked-but-wrong trials are counted
-// apart.
+// succeeds when it is tracked, that error is small and no annotation the frame does not see is
+// drawn inside it (a fit right on a sliver of overlap may extrapolate wildly beyond it);
+// tracked-but-wrong trials are counted apart.
 // Rendering needs a current GL context (render::createHeadlessContext()).
 #include <cstdint>
 #include <opencv2/core.hpp>
@@ -27,6 +28,9 @@ struct RotationSweepOptions {
   // A tracked trial counts as a success only with an annotation error below this (pixels);
   // above it (or with no annotation inside the frame to check) it is "tracked but wrong".
   double successErrorPx = 2.0;
+  // The tracker is given the camera's K, as a calibrated user's would be (enables the
+  // rotation-only model, homography.rotation_model); false: the general homography alone.
+  bool calibrated = true;
   TrackerParams params;
   void check() const;  // throws reftrack::Error naming the bad field
 };
@@ -35,10 +39,11 @@ struct RotationStep {
   double angleDeg = 0.0;
   double overlap = 0.0;  // fraction of the frame that sees the reference (mean of both pans)
   int trials = 0;
-  int successes = 0;           // tracked and annotation error < successErrorPx
-  int trackedButWrong = 0;     // tracked, but the error is larger (a wrong registration)
-  double meanErrorPx = 0.0;    // annotation error over the successful trials (NaN if none)
-  double medianErrorPx = 0.0;  // (NaN if none)
+  int successes = 0;               // tracked and annotation error < successErrorPx
+  int rotationModelSuccesses = 0;  // successes registered with the rotation-only model
+  int trackedButWrong = 0;         // tracked, but the error is larger (a wrong registration)
+  double meanErrorPx = 0.0;        // annotation error over the successful trials (NaN if none)
+  double medianErrorPx = 0.0;      // (NaN if none)
   double maxErrorPx = 0.0;
   double medianMs = 0.0;  // registration time per trial
 };

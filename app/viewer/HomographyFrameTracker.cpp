@@ -10,7 +10,6 @@ HomographyFrameTracker::HomographyFrameTracker(const cv::Mat& reference,
                                                std::optional<PinholeCamera> camera,
                                                AnnotationSet labels)
     : reference_(toGray8(reference).clone()),
-      tracker_(std::make_unique<HomographyTracker>(reference_, params)),
       camera_(std::move(camera)),
       labels_(std::move(labels)) {
   if (camera_ && camera_->imageSize() != reference_.size())
@@ -18,6 +17,7 @@ HomographyFrameTracker::HomographyFrameTracker(const cv::Mat& reference,
                 std::to_string(camera_->imageSize().width) + "x" +
                 std::to_string(camera_->imageSize().height) + " but the reference is " +
                 std::to_string(reference_.cols) + "x" + std::to_string(reference_.rows));
+  applyParams(params);
 }
 
 TrackingResult HomographyFrameTracker::process(const cv::Mat& frame, int, double) {
@@ -42,7 +42,8 @@ TrackingResult HomographyFrameTracker::process(const cv::Mat& frame, int, double
 }
 
 void HomographyFrameTracker::applyParams(const TrackerParams& params) {
-  tracker_ = std::make_unique<HomographyTracker>(reference_, params);
+  tracker_ = std::make_unique<HomographyTracker>(
+      reference_, params, camera_ ? std::optional<Eigen::Matrix3d>(camera_->K()) : std::nullopt);
 }
 
 }  // namespace reftrack::app

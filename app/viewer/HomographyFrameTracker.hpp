@@ -4,7 +4,8 @@
 // debug layers (frame corners, inlier matches drawn from the reference position), TrackingResult
 // H (frame -> reference, as FrameTracker documents) and, given the camera, the rotation-only pose
 // R = K^-1 H K (world = the reference camera's frame, zero translation). Labels of the reference
-// frame are mapped into each registered frame (mappedLabels()).
+// frame are mapped into each registered frame (mappedLabels()). The camera's K also enables the
+// tracker's rotation-only model (homography.rotation_model).
 #include <memory>
 #include <optional>
 

@@ -55,6 +55,12 @@ void drawTrackingPanel(ViewerState& state, const cv::Rect2f& placement) {
     changed |= inputDouble("search half h", p.correlation.searchHalfHeightPx, 1.0, "%.1f");
     changed |= ImGui::InputInt("corners @320x240", &p.corners.countAt320x240);
   }
+  if (ImGui::CollapsingHeader("Homography mode")) {
+    changed |= inputDouble("guided search", p.homography.guidedSearchHalfSizePx, 1.0, "%.1f");
+    changed |= inputDouble("reacquire corners x", p.homography.reacquireCornerFactor, 1.0, "%.1f");
+    // Needs the camera's K (camera.yml or the simulator's camera).
+    changed |= ImGui::Checkbox("rotation model", &p.homography.rotationModel);
+  }
   ImGui::PopItemWidth();
   if (changed) state.trackerParamsChanged = true;
 

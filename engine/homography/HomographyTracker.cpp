@@ -2,6 +2,7 @@
 
 #include <Eigen/LU>
 #include <Eigen/SVD>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -50,10 +51,23 @@ RansacParams frameFitParams(const RansacParams& p) {
   return r;
 }
 
-// The corner parameters with the count scaled by `factor` (>= 1).
+// The corner parameters with the count scaled by `factor`.
 CornerParams scaledCount(const CornerParams& corners, double factor) {
   CornerParams c = corners;
-  c.countAt320x240 = static_cast<int>(std::lround(c.countAt320x240 * std::max(1.0, factor)));
+  c.countAt320x240 = static_cast<int>(std::lround(c.countAt320x240 * factor));
+  return c;
+}
+
+// The re-acquisition corner parameters: denser, weaker and closer than the tracking corners.
+// Above 320x240 the count is not scaled up with the image area: unguided matching compares
+// every pair, so its cost grows with the square of the count (measured cold registration at
+// 640x480 with the area-scaled 1760 corners: 37-46 ms per frame).
+CornerParams reacquisitionCorners(const TrackerParams& p, cv::Size imageSize) {
+  const double area = resolutionScale(imageSize) * resolutionScale(imageSize);
+  CornerParams c = scaledCount(p.corners, p.homography.reacquireCornerFactor / std::max(1.0, area));
+  c.countAt320x240 = std::max(c.countAt320x240, p.corners.countAt320x240);
+  c.quality = std::min(c.quality, p.homography.reacquireCornerQuality);
+  c.minDistancePx = std::min(c.minDistancePx, p.homography.reacquireMinDistancePx);
   return c;
 }
 
@@ -68,24 +82,25 @@ HomographyTracker::ReferenceSet HomographyTracker::referenceSet(const cv::Mat& g
   return r;
 }
 
-HomographyTracker::HomographyTracker(const cv::Mat& reference, const TrackerParams& params)
+HomographyTracker::HomographyTracker(const cv::Mat& reference, const TrackerParams& params,
+                                     const std::optional<Eigen::Matrix3d>& K)
     : params_(checked(params)),
       detector_(params_.corners),
       frameDetector_(scaledCount(params_.corners, params_.homography.frameCornerFactor)),
-      reacquireDetector_(scaledCount(params_.corners, params_.homography.reacquireCornerFactor)),
+      reacquireDetector_(reacquisitionCorners(params_, reference.size())),
       matcher_(params.correlation),
       estimator_(frameFitParams(params_.ransac)),
       prevPatches_(params.correlation.halfWindow) {
   if (reference.empty()) throw Error("homography tracker: the reference image is empty");
+  if (K && params_.homography.rotationModel)
+    rotationEstimator_.emplace(*K, frameFitParams(params_.ransac));
   refGray_ = toGray8(reference).clone();
   const int half = params_.correlation.halfWindow;
   ref_ = referenceSet(refGray_, detector_, half);
   if (ref_.corners.size() < 8)
     throw Error("homography tracker: only " + std::to_string(ref_.corners.size()) +
                 " corners in the reference image (at least 8 needed; is it textured?)");
-  reacquireRef_ = reacquireDetector_.params().countAt320x240 == params_.corners.countAt320x240
-                      ? ref_
-                      : referenceSet(refGray_, reacquireDetector_, half);
+  reacquireRef_ = referenceSet(refGray_, reacquireDetector_, half);
 }
 
 void HomographyTracker::reset() {
@@ -174,29 +189,46 @@ HomographyTracker::Attempt HomographyTracker::attempt(const cv::Mat& gray,
     a.dst.push_back(a.points[static_cast<size_t>(m.second)]);
     score.push_back(m.score);
   }
-  a.est = estimator_.estimate(a.src, a.dst, gray.size(), score);
-  stageMs[3] += lap(clock);
-  if (!a.est.success) {
-    a.failure = a.est.failure;
-    return a;
-  }
   // The paper's failure test: inliers among the reference corners this frame can see (mapped
   // inside it with their whole window, and with a window in the reference).
   const int margin = params_.correlation.halfWindow;
-  int visible = 0;
-  for (size_t i = 0; i < ref.points.size(); ++i) {
-    if (!measurable[i]) continue;
-    const cv::Point2d q = transferPoint(a.est.H, cv::Point2d(ref.points[i].x, ref.points[i].y));
-    if (q.x >= margin && q.y >= margin && q.x < gray.cols - margin && q.y < gray.rows - margin)
-      ++visible;
-  }
-  a.inlierRatio = static_cast<double>(a.est.inlierCount) / std::max(visible, a.est.inlierCount);
-  if (a.inlierRatio < params_.ransac.minInlierRatio) {
-    a.failure = "only " + std::to_string(a.est.inlierCount) + " of " + std::to_string(visible) +
+  const auto judge = [&](const HomographyEstimate& est, double& ratio, std::string& failure) {
+    if (!est.success) {
+      failure = est.failure;
+      return false;
+    }
+    int visible = 0;
+    for (size_t i = 0; i < ref.points.size(); ++i) {
+      if (!measurable[i]) continue;
+      const cv::Point2d q = transferPoint(est.H, cv::Point2d(ref.points[i].x, ref.points[i].y));
+      if (q.x >= margin && q.y >= margin && q.x < gray.cols - margin && q.y < gray.rows - margin)
+        ++visible;
+    }
+    ratio = static_cast<double>(est.inlierCount) / std::max(visible, est.inlierCount);
+    if (ratio < params_.ransac.minInlierRatio) {
+      failure = "only " + std::to_string(est.inlierCount) + " of " + std::to_string(visible) +
                 " visible reference corners are inliers";
-    return a;
+      return false;
+    }
+    return true;
+  };
+  a.est = estimator_.estimate(a.src, a.dst, gray.size(), score);
+  a.tracked = judge(a.est, a.inlierRatio, a.failure);
+  if (!a.tracked && rotationEstimator_) {
+    HomographyEstimate rot = rotationEstimator_->estimate(a.src, a.dst, gray.size(), score);
+    double ratio = 0.0;
+    std::string failure;
+    if (judge(rot, ratio, failure)) {
+      a.est = std::move(rot);
+      a.inlierRatio = ratio;
+      a.failure.clear();
+      a.rotationModel = true;
+      a.tracked = true;
+    } else {
+      a.failure += "; rotation model: " + failure;
+    }
   }
-  a.tracked = true;
+  stageMs[3] += lap(clock);
   return a;
 }
 
@@ -229,6 +261,7 @@ HomographyTrackResult HomographyTracker::track(const cv::Mat& frame) {
   HomographyTrackResult out;
   out.tracked = a.tracked;
   out.guided = a.prediction.has_value();
+  out.rotationModel = a.rotationModel;
   out.corners = static_cast<int>(a.points.size());
   out.matches = a.matches;
   out.inliers = a.est.inlierCount;

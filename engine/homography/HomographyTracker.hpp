@@ -10,6 +10,8 @@
 // (coasting); when that fails too, or no frame-to-frame homography is found, a frame is matched
 // unguided (square windows, whole image, a denser corner set on both sides, RANSAC drawing from
 // the best correlation scores first), so tracking re-acquires on its own when the view returns.
+// Given the camera's K, a frame the general homography fails on is tried with the rotation-only
+// model H = K R K^-1 (homography.rotation_model), which a sliver of overlap still determines.
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 #include <optional>
@@ -21,6 +23,7 @@
 #include "engine/features/Corner.hpp"
 #include "engine/features/CornerDetector.hpp"
 #include "engine/homography/RobustHomographyEstimator.hpp"
+#include "engine/homography/RotationHomographyEstimator.hpp"
 #include "engine/matching/NarrowBaselineMatcher.hpp"
 #include "engine/matching/NccCorrelation.hpp"
 
@@ -33,8 +36,9 @@ struct HomographyTrackResult {
   int corners = 0;                     // corners detected in this frame
   int matches = 0;                     // correlation matches to the reference
   int inliers = 0;
-  bool guided = false;  // matched around a prediction (false: unguided re-acquisition)
-  std::string failure;  // why the frame was not tracked
+  bool guided = false;         // matched around a prediction (false: unguided re-acquisition)
+  bool rotationModel = false;  // H is the rotation-only model K R K^-1 (needs K)
+  std::string failure;         // why the frame was not tracked
   std::vector<cv::Point2f> frameCorners;  // corner positions detected in this frame
   // Inlier correspondences (reference position, frame position) of the final H.
   std::vector<std::pair<cv::Point2f, cv::Point2f>> inlierMatches;
@@ -44,9 +48,11 @@ struct HomographyTrackResult {
 
 class HomographyTracker {
  public:
-  // reference: the stored frame (8-bit grey or BGR). Throws reftrack::Error on an empty image,
-  // bad parameters, or a reference with fewer than 8 corners.
-  HomographyTracker(const cv::Mat& reference, const TrackerParams& params);
+  // reference: the stored frame (8-bit grey or BGR); K: the camera's intrinsics when calibrated
+  // (enables the rotation-only model). Throws reftrack::Error on an empty image, bad
+  // parameters, a non-invertible K, or a reference with fewer than 8 corners.
+  HomographyTracker(const cv::Mat& reference, const TrackerParams& params,
+                    const std::optional<Eigen::Matrix3d>& K = std::nullopt);
 
   // Frames must have the reference's size (else reftrack::Error naming both sizes).
   HomographyTrackResult track(const cv::Mat& frame);
@@ -83,6 +89,7 @@ class HomographyTracker {
     std::vector<cv::Point2f> src, dst;  // matched reference / frame positions
     HomographyEstimate est;
     double inlierRatio = 0.0;
+    bool rotationModel = false;
     bool tracked = false;
     std::string failure;
   };
@@ -95,6 +102,7 @@ class HomographyTracker {
   CornerDetector reacquireDetector_;  // both sides while lost: count times reacquire_corner_factor
   NarrowBaselineMatcher matcher_;
   RobustHomographyEstimator estimator_;
+  std::optional<RotationHomographyEstimator> rotationEstimator_;  // with K and rotation_model
   cv::Mat refGray_;
   ReferenceSet ref_, reacquireRef_;
   // The previous frame (for the frame-to-frame homography) and its registration.

@@ -16,6 +16,9 @@ TEST(HomographyTrackerParams, RoundTrip) {
   in.reacquireWholeImage = false;
   in.reacquireCornerFactor = 2.5;
   in.frameCornerFactor = 1.5;
+  in.reacquireCornerQuality = 0.003;
+  in.reacquireMinDistancePx = 6;
+  in.rotationModel = false;
   HomographyTrackerParams out;
   roundTrip(in, out);
   EXPECT_DOUBLE_EQ(out.guidedSearchHalfSizePx, 4.5);
@@ -23,6 +26,9 @@ TEST(HomographyTrackerParams, RoundTrip) {
   EXPECT_FALSE(out.reacquireWholeImage);
   EXPECT_DOUBLE_EQ(out.reacquireCornerFactor, 2.5);
   EXPECT_DOUBLE_EQ(out.frameCornerFactor, 1.5);
+  EXPECT_DOUBLE_EQ(out.reacquireCornerQuality, 0.003);
+  EXPECT_DOUBLE_EQ(out.reacquireMinDistancePx, 6);
+  EXPECT_FALSE(out.rotationModel);
 }
 
 TEST(HomographyTrackerParams, BadFieldIsNamed) {
@@ -37,6 +43,14 @@ TEST(HomographyTrackerParams, BadFieldIsNamed) {
   p.reacquireCornerFactor = 3;
   p.frameCornerFactor = 20;
   EXPECT_NE(errorMessage([&] { p.check(); }).find("homography.frame_corner_factor"),
+            std::string::npos);
+  p.frameCornerFactor = 2;
+  p.reacquireCornerQuality = 0;
+  EXPECT_NE(errorMessage([&] { p.check(); }).find("homography.reacquire_corner_quality"),
+            std::string::npos);
+  p.reacquireCornerQuality = 1e-4;
+  p.reacquireMinDistancePx = std::numeric_limits<double>::infinity();
+  EXPECT_NE(errorMessage([&] { p.check(); }).find("homography.reacquire_min_distance_px"),
             std::string::npos);
   auto fs = parseYaml("h: { frame_to_frame_prediction: 3 }\n");
   HomographyTrackerParams q;
