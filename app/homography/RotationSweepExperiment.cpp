@@ -102,10 +102,10 @@ std::vector<RotationStep> runRotationSweep(const RotationSweepOptions& options) 
       const cv::Mat frame = addSensorNoise(clean[side], mixSeed(trialSeed, 2), sim.noiseSigma);
       ++step.trials;
       try {
-        const auto t0 = std::chrono::steady_clock::now();
         HomographyTracker tracker(
             reference, options.params,
             options.calibrated ? std::optional<Eigen::Matrix3d>(K) : std::nullopt);
+        const auto t0 = std::chrono::steady_clock::now();
         const HomographyTrackResult r = tracker.track(frame);
         ms.push_back(
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)

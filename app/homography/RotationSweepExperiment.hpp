@@ -45,7 +45,7 @@ struct RotationStep {
   double meanErrorPx = 0.0;        // annotation error over the successful trials (NaN if none)
   double medianErrorPx = 0.0;      // (NaN if none)
   double maxErrorPx = 0.0;
-  double medianMs = 0.0;  // registration time per trial
+  double medianMs = 0.0;  // registration time per trial (the unguided frame; not the reference)
 };
 
 // One step per angle 0, step, 2 step, ... up to maxAngleDeg.

@@ -90,11 +90,19 @@ class HomographyTracker {
     HomographyEstimate est;
     double inlierRatio = 0.0;
     bool rotationModel = false;
+    // The best H either model found, even when it fails the inlier rules.
+    std::optional<cv::Matx33d> hypothesis;
     bool tracked = false;
     std::string failure;
   };
   Attempt attempt(const cv::Mat& gray, const CornerDetector& detector, const ReferenceSet& ref,
                   const std::optional<cv::Matx33d>& base, bool coasting, double stageMs[4]);
+  // Matches the attempt's frame corners to `ref` — around the positions `guide` predicts
+  // (warped windows, +-guidedHalf pixels), or unguided — then fits H (the general model, then
+  // the rotation model) and applies the inlier rules. stageMs[2..3] accumulate.
+  void matchAndFit(Attempt& a, const cv::Mat& gray, const ReferenceSet& ref,
+                   const std::optional<cv::Matx33d>& guide, double guidedHalf,
+                   double stageMs[4]) const;
 
   TrackerParams params_;
   CornerDetector detector_;           // the reference's tracking corners
