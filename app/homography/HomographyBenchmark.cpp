@@ -58,12 +58,14 @@ BenchmarkResult runHomographyBenchmark(const BenchmarkOptions& options) {
   // Frames are converted to grey once, outside the timed calls (both methods work on grey).
   const cv::Mat reference = toGray8(simulator.renderReference('A'));
   HomographyTracker tracker(reference, options.params);
+  HomographyTracker calibratedTracker(reference, options.params, K);
   const OrbHomographyBaseline baseline(reference);
 
   BenchmarkResult out;
   out.size = options.size;
   out.frames = options.frames;
   out.tracker.name = "reftrack homography";
+  out.calibratedTracker.name = "reftrack homography + K";
   out.baseline.name = "ORB+BF+findHomography";
   const double nan = std::numeric_limits<double>::quiet_NaN();
   ProgressBar progress(
@@ -75,19 +77,22 @@ BenchmarkResult runHomographyBenchmark(const BenchmarkOptions& options) {
     const RigidPose aToK = simulator.framePose(k) * poseA.inverse();
     const cv::Matx33d trueH = rotationHomography(K, aToK.rotation());
 
-    auto t0 = std::chrono::steady_clock::now();
-    const HomographyTrackResult r = tracker.track(frame);
-    out.tracker.milliseconds.push_back(millisecondsSince(t0));
-    out.tracker.cornerErrorPx.push_back(r.tracked ? frameCornerError(r.H, trueH, options.size)
-                                                  : nan);
-    out.tracker.registered += r.tracked ? 1 : 0;
-    for (size_t i = 0; i < r.stageMs.size(); ++i) {
-      if (out.tracker.stageMs.size() <= i) out.tracker.stageMs.push_back({r.stageMs[i].first, {}});
-      out.tracker.stageMs[i].second.push_back(r.stageMs[i].second);
-    }
-    if (!r.tracked) out.tracker.failures.push_back("frame " + std::to_string(k) + ": " + r.failure);
+    const auto runTracker = [&](HomographyTracker& t, BenchmarkSide& side) {
+      const auto t0 = std::chrono::steady_clock::now();
+      const HomographyTrackResult r = t.track(frame);
+      side.milliseconds.push_back(millisecondsSince(t0));
+      side.cornerErrorPx.push_back(r.tracked ? frameCornerError(r.H, trueH, options.size) : nan);
+      side.registered += r.tracked ? 1 : 0;
+      for (size_t i = 0; i < r.stageMs.size(); ++i) {
+        if (side.stageMs.size() <= i) side.stageMs.push_back({r.stageMs[i].first, {}});
+        side.stageMs[i].second.push_back(r.stageMs[i].second);
+      }
+      if (!r.tracked) side.failures.push_back("frame " + std::to_string(k) + ": " + r.failure);
+    };
+    runTracker(tracker, out.tracker);
+    runTracker(calibratedTracker, out.calibratedTracker);
 
-    t0 = std::chrono::steady_clock::now();
+    const auto t0 = std::chrono::steady_clock::now();
     const OrbHomographyResult b = baseline.track(frame);
     out.baseline.milliseconds.push_back(millisecondsSince(t0));
     out.baseline.cornerErrorPx.push_back(b.tracked ? frameCornerError(b.H, trueH, options.size)

@@ -40,6 +40,8 @@ struct BenchmarkResult {
   cv::Size size;
   int frames = 0;
   BenchmarkSide tracker, baseline;
+  // The tracker given the camera's K (rotation-only model enabled), on the same frames.
+  BenchmarkSide calibratedTracker;
 };
 
 BenchmarkResult runHomographyBenchmark(const BenchmarkOptions& options);

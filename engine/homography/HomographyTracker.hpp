@@ -80,7 +80,9 @@ class HomographyTracker {
                                    int halfWindow);
 
   // One registration attempt of a frame: guided by the prediction from `base` when there is
-  // one, else unguided. stageMs[4] accumulates corners, prediction, matching, robust fit.
+  // one (base chained with the frame-to-frame homography, or base itself when
+  // chainFrameToFrame is false), else unguided. stageMs[4] accumulates corners, prediction,
+  // matching, robust fit.
   struct Attempt {
     std::vector<cv::Point2f> points;  // the frame's corners
     NccPatches patches{1};
@@ -96,7 +98,8 @@ class HomographyTracker {
     std::string failure;
   };
   Attempt attempt(const cv::Mat& gray, const CornerDetector& detector, const ReferenceSet& ref,
-                  const std::optional<cv::Matx33d>& base, bool coasting, double stageMs[4]);
+                  const std::optional<cv::Matx33d>& base, bool coasting, double stageMs[4],
+                  bool chainFrameToFrame = true);
   // Matches the attempt's frame corners to `ref` — around the positions `guide` predicts
   // (warped windows, +-guidedHalf pixels), or unguided — then fits H (the general model, then
   // the rotation model) and applies the inlier rules. stageMs[2..3] accumulate.
