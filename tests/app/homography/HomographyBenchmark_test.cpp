@@ -29,8 +29,9 @@ TEST(HomographyBenchmark, BothMethodsRunOnTheSameFramesAgainstExactTruth) {
   // Sub-pixel corner registration for reftrack (measured ~0.3 px); the ORB baseline is only
   // required to be finite where it registered.
   EXPECT_LT(finiteMedian(r.tracker.cornerErrorPx), 0.6);
-  // Given K, the rotation-only model (3 parameters) explains these pure-rotation frames: at
-  // least as accurate (measured 0.13 vs 0.42 px median over 150 frames).
+  // Given K, the rotation-only model may only replace a general fit that rests on a thin strip
+  // of the reference, so here (wide overlap) it changes nothing: every frame registered, no
+  // less accurate (measured: the same 0.418 px median over 150 frames).
   EXPECT_EQ(r.calibratedTracker.registered, 12);
   EXPECT_LE(finiteMedian(r.calibratedTracker.cornerErrorPx),
             finiteMedian(r.tracker.cornerErrorPx));
