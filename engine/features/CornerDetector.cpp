@@ -93,21 +93,24 @@ std::vector<Corner> CornerDetector::detect(const cv::Mat& image) const {
   thread_local std::vector<cv::KeyPoint> keypoints, fewer;
   // No FAST non-maximum suppression: its strict test drops pixel-aligned corners whose
   // neighbours tie; the Harris ranking with minimum spacing below does the suppression. The
-  // threshold is halved while there are fewer than 2 candidates per corner wanted, and raised
-  // while there are more than kMaxCandidatesPerCorner (scoring thousands of candidates on a
-  // richly textured frame costs more than the FAST passes), keeping at least 2 per corner. The
-  // next call starts from the threshold this one settled on (consecutive frames are alike).
-  constexpr int kMaxCandidatesPerCorner = 12;
+  // threshold is halved while there are fewer than kMinCandidatesPerCorner candidates per corner
+  // wanted, and raised while there are more than kMaxCandidatesPerCorner (scoring thousands of
+  // candidates on a richly textured frame costs more than the FAST passes), keeping the minimum.
+  // The next call starts from the threshold this one settled on (consecutive frames are alike).
+  // FAST fires on several neighbouring pixels of one corner, so the minimum is 4 raw candidates
+  // per corner (with 2, a frame darkened by 30% after bright ones kept the brighter frames'
+  // threshold and yielded 39-48 of 110 corners).
+  constexpr int kMaxCandidatesPerCorner = 12, kMinCandidatesPerCorner = 4;
   int threshold = thresholdHint_ > 0 ? thresholdHint_ : params_.fastThreshold;
   cv::FAST(work, keypoints, threshold, false);
-  while (static_cast<int>(keypoints.size()) < 2 * count && threshold > 4) {
+  while (static_cast<int>(keypoints.size()) < kMinCandidatesPerCorner * count && threshold > 4) {
     threshold /= 2;
     cv::FAST(work, keypoints, threshold, false);
   }
   while (static_cast<int>(keypoints.size()) > kMaxCandidatesPerCorner * count && threshold < 120) {
     threshold = threshold * 3 / 2;
     cv::FAST(work, fewer, threshold, false);
-    if (static_cast<int>(fewer.size()) < 2 * count) break;
+    if (static_cast<int>(fewer.size()) < kMinCandidatesPerCorner * count) break;
     std::swap(keypoints, fewer);
   }
   thresholdHint_ = threshold;

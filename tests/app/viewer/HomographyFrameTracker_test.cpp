@@ -157,9 +157,10 @@ TEST_F(HomographyFrameTrackerTest, SurvivesABrightnessChange) {
   const std::vector<FrameOutcome> f = runPerturbed(Perturbation::Brightness);
   EXPECT_EQ(lostUnaffected(f), 0);
   EXPECT_EQ(trackedCount(f), 25);  // measured: NCC absorbs the gain, every frame registers
-  // At the frame corners (the worst place, extrapolated from the matched area): measured 1.72 px
-  // worst (a +30% frame whose highlights saturate), 0.4-0.8 px typical.
-  EXPECT_LT(worstError(f), 2.5);
+  // At the frame corners (the worst place, extrapolated from the matched area): measured 0.57 px
+  // worst. (It was 1.72 px on the -30% frames while the corner detector kept the FAST threshold
+  // of the brighter frames and found only 39-48 of its 110 corners.)
+  EXPECT_LT(worstError(f), 1.0);
 }
 
 TEST_F(HomographyFrameTrackerTest, SurvivesAPassingOccluder) {
