@@ -90,6 +90,8 @@ CommandRegistration registerViewCommand(CLI::App& parent) {
             ViewerOptions options = args->options;
             if (sub->count("--overlay-cube") > 0) options.cubeSize = args->cubeSize;
             options.source.simSize = *parseImageSize(args->simSize);
+            if (args->map.empty() != args->reference.empty())
+              options.mode = args->map.empty() ? TrackingMode::Homography : TrackingMode::SixDof;
             if (!args->map.empty() || !args->reference.empty()) {
               // Live tracking: 6-DOF against the map and/or homography against the reference;
               // the Tracking panel's mode switch selects between those given.

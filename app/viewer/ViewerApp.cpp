@@ -88,6 +88,7 @@ struct Session {
 Session openSession(const ViewerOptions& options, ViewerState& state) {
   Session s;
   state.settings = options.params.empty() ? ViewerSettings{} : ViewerSettings::load(options.params);
+  if (options.mode) state.settings.tracker.mode = *options.mode;
   if (options.cubeSize) state.settings.overlay.size = *options.cubeSize;
   if (!options.model.empty()) state.settings.overlay.modelPath = options.model.string();
   state.settings.check();

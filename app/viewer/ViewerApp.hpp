@@ -43,6 +43,9 @@ struct ViewerOptions {
   // Unset: sim: inputs replay their ground truth, other inputs show the video only.
   std::function<std::unique_ptr<FrameTracker>(const PinholeCamera&, const TrackerParams&)>
       makeTracker;
+  // The tracking mode to start in, over the params file's (`view` sets it when only one of
+  // --map / --reference is given).
+  std::optional<TrackingMode> mode;
   void check() const;  // throws reftrack::Error naming the bad option
 };
 

@@ -209,3 +209,19 @@ TEST(ViewCommand, HeadlessCalibrationWritesTheCamera) {
       << few.err;
   EXPECT_FALSE(fs::exists(dir / "few.yml"));
 }
+
+TEST(ViewCommand, ReferenceAloneStartsInHomographyMode) {
+  // Only --reference (no params file, whose default mode is 6dof): the viewer tracks in
+  // homography mode from the first frame, with the simulator's camera.
+  const fs::path dir = test::freshTempDir("ViewCommand_Homography");
+  const std::string seq = makeSequence(dir, "320x240");
+  const auto run = test::runReftrack(
+      "view --headless --input sim:rotate --sim-size 320x240 --frames 8 "
+      "--reference " +
+          seq + "/reference_a.png --record " + (dir / "out.mp4").string(),
+      dir);
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_NE(run.out.find("processed 8 frames"), std::string::npos) << run.out;
+  // The recorded trajectory has a pose for every frame: each was registered.
+  EXPECT_EQ(TumTrajectory::load(dir / "out_trajectory.txt").poses.size(), 8u);
+}
