@@ -73,7 +73,8 @@ void runRotation(const ExperimentArgs& a, cv::Size size, const TrackerParams& pa
   const std::vector<RotationStep> steps = runRotationSweep(o);
   std::printf("pure rotation sweep, %dx%d, 33 deg field of view, %d trials per angle, %s\n",
               size.width, size.height, a.trials,
-              o.calibrated ? "calibrated (K given: rotation model after a failed homography)"
+              o.calibrated ? "calibrated (K given: the rotation-only model where the general "
+                             "homography fails or rests on a thin strip)"
                            : "uncalibrated (general homography only)");
   std::printf("%-9s %-9s %-9s %-9s %-9s %-15s %-15s %-15s %-9s\n", "angle", "overlap", "success",
               "rot.model", "wrong", "mean err (px)", "median err", "max err", "ms_med");
