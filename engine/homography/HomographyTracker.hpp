@@ -4,14 +4,17 @@
 // previous result: the frame-to-frame homography (previous -> current, narrow-baseline matches
 // + RANSAC) chained with the last reference -> previous one; reference corners are matched
 // around their predicted positions with reference windows warped by the prediction (Eq. 19
-// style), solved robustly and refined. A frame with too few inliers among the reference corners
+// style), solved robustly and refined; failing that, the denser re-acquisition corners are
+// matched around the same prediction. A frame with too few inliers among the reference corners
 // that fall inside it (and whose window can be formed) is flagged lost. The next frames are
 // still matched guided by the last prediction carried on with frame-to-frame homographies
 // (coasting); when that fails too, or no frame-to-frame homography is found, a frame is matched
 // unguided (square windows, whole image, a denser corner set on both sides, RANSAC drawing from
-// the best correlation scores first), so tracking re-acquires on its own when the view returns.
-// Given the camera's K, a frame the general homography fails on is tried with the rotation-only
-// model H = K R K^-1 (homography.rotation_model), which a sliver of overlap still determines.
+// the best correlation scores first; a hypothesis short of the inlier rules is re-matched around
+// its own prediction), so tracking re-acquires on its own when the view returns.
+// Given the camera's K, a frame the general homography fails on — or fits on a thin strip only —
+// is solved with the rotation-only model H = K R K^-1 (homography.rotation_model), which a
+// sliver of overlap still determines.
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 #include <optional>
