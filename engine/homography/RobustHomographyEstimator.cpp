@@ -9,6 +9,7 @@
 #include "engine/config/ResolutionScale.hpp"
 #include "engine/core/Error.hpp"
 #include "engine/homography/HomographyDlt.hpp"
+#include "engine/homography/ProgressiveSampling.hpp"
 
 namespace reftrack {
 
@@ -130,12 +131,7 @@ HomographyEstimate RobustHomographyEstimator::estimate(const std::vector<cv::Poi
                                                        const std::vector<cv::Point2f>& dst,
                                                        cv::Size imageSize,
                                                        const std::vector<float>& quality) const {
-  if (src.size() != dst.size())
-    throw Error("robust homography: " + std::to_string(src.size()) + " source points but " +
-                std::to_string(dst.size()) + " destination points");
-  if (!quality.empty() && quality.size() != src.size())
-    throw Error("robust homography: " + std::to_string(quality.size()) + " quality values for " +
-                std::to_string(src.size()) + " matches");
+  requireMatchLists("robust homography", src, dst, quality);
   HomographyEstimate out;
   const int n = static_cast<int>(src.size());
   out.inliers.assign(static_cast<size_t>(n), 0);
@@ -147,24 +143,9 @@ HomographyEstimate RobustHomographyEstimator::estimate(const std::vector<cv::Poi
   const double threshold = params_.inlierThresholdPx * resolutionScale(imageSize);
   cv::RNG rng(static_cast<uint64_t>(params_.seed) + 0x9E3779B97F4A7C15ull);
 
-  // Sampling order: best quality first when progressive (PROSAC, Chum & Matas 2005), so that
-  // iteration t draws from the top n_t matches, n_t growing to all n by the last iteration:
-  // n_t is the smallest pool with T_n = T C(n,4) / C(N,4) >= t + 1 (T = max iterations).
-  std::vector<int> order(static_cast<size_t>(n));
-  std::iota(order.begin(), order.end(), 0);
-  const bool progressive = params_.progressiveSampling && !quality.empty();
-  if (progressive)
-    std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
-      return quality[static_cast<size_t>(a)] > quality[static_cast<size_t>(b)];
-    });
-  const auto choose4 = [](double m) { return m * (m - 1) * (m - 2) * (m - 3) / 24.0; };
-  const auto poolFor = [&](int it) {
-    if (!progressive) return n;
-    const double perSample = params_.maxIterations / choose4(n);
-    int pool = std::min(n, kMinProgressivePool);
-    while (pool < n && perSample * choose4(pool) < it + 1) ++pool;
-    return pool;
-  };
+  // Sampling order: best quality first when progressive (PROSAC).
+  const ProgressiveSampling sampling(quality, n, params_.progressiveSampling, params_.maxIterations,
+                                     4, kMinProgressivePool);
 
   // One RANSAC pass with samples pairwise >= minSpacing apart; returns the best support.
   const auto ransacPass = [&](double minSpacing) {
@@ -176,11 +157,11 @@ HomographyEstimate RobustHomographyEstimator::estimate(const std::vector<cv::Poi
       // Draw 4 points of the pool pairwise >= spacing apart (a bounded number of tries per
       // iteration; a pool that cannot provide them is widened).
       bool drawn = false;
-      for (int pool = poolFor(it); !drawn; pool = std::min(n, 2 * pool)) {
+      for (int pool = sampling.pool(it); !drawn; pool = std::min(n, 2 * pool)) {
         for (int attempt = 0; attempt < 40 && !drawn; ++attempt) {
           int k = 0;
           for (int tries = 0; k < 4 && tries < 40; ++tries) {
-            const int c = order[static_cast<size_t>(rng.uniform(0, pool))];
+            const int c = sampling.matchAt(rng.uniform(0, pool));
             bool ok = true;
             for (int m = 0; m < k && ok; ++m) {
               const cv::Point2f d =

@@ -9,6 +9,7 @@
 #include "engine/config/ResolutionScale.hpp"
 #include "engine/core/Error.hpp"
 #include "engine/homography/HomographyDlt.hpp"
+#include "engine/homography/ProgressiveSampling.hpp"
 
 namespace reftrack {
 
@@ -48,12 +49,7 @@ HomographyEstimate RotationHomographyEstimator::estimate(const std::vector<cv::P
                                                          const std::vector<cv::Point2f>& dst,
                                                          cv::Size imageSize,
                                                          const std::vector<float>& quality) const {
-  if (src.size() != dst.size())
-    throw Error("rotation homography: " + std::to_string(src.size()) + " source points but " +
-                std::to_string(dst.size()) + " destination points");
-  if (!quality.empty() && quality.size() != src.size())
-    throw Error("rotation homography: " + std::to_string(quality.size()) + " quality values for " +
-                std::to_string(src.size()) + " matches");
+  requireMatchLists("rotation homography", src, dst, quality);
   HomographyEstimate out;
   const int n = static_cast<int>(src.size());
   out.inliers.assign(static_cast<size_t>(n), 0);
@@ -93,32 +89,18 @@ HomographyEstimate RotationHomographyEstimator::estimate(const std::vector<cv::P
     return in;
   };
 
-  // Best quality first when progressive (as RobustHomographyEstimator: iteration t draws from
-  // the top n_t matches, T C(n_t, 2) / C(N, 2) >= t + 1).
-  std::vector<int> order(static_cast<size_t>(n));
-  std::iota(order.begin(), order.end(), 0);
-  const bool progressive = params_.progressiveSampling && !quality.empty();
-  if (progressive)
-    std::stable_sort(order.begin(), order.end(), [&](int x, int y) {
-      return quality[static_cast<size_t>(x)] > quality[static_cast<size_t>(y)];
-    });
-  const auto choose2 = [](double m) { return m * (m - 1) / 2.0; };
-  const auto poolFor = [&](int it) {
-    if (!progressive) return n;
-    const double perSample = params_.maxIterations / choose2(n);
-    int pool = std::min(n, kMinProgressivePool);
-    while (pool < n && perSample * choose2(pool) < it + 1) ++pool;
-    return pool;
-  };
+  // Best quality first when progressive (PROSAC, pairs).
+  const ProgressiveSampling sampling(quality, n, params_.progressiveSampling, params_.maxIterations,
+                                     2, kMinProgressivePool);
   cv::RNG rng(static_cast<uint64_t>(params_.seed) + 0x7F4A7C159E3779B9ull);
   std::vector<int> best;
   for (int it = 0; it < params_.maxIterations; ++it) {
     ++out.iterations;
-    const int pool = poolFor(it);
+    const int pool = sampling.pool(it);
     int i = -1, j = -1;
     for (int tries = 0; tries < 40 && j < 0; ++tries) {
-      const int x = order[static_cast<size_t>(rng.uniform(0, pool))];
-      const int y = order[static_cast<size_t>(rng.uniform(0, pool))];
+      const int x = sampling.matchAt(rng.uniform(0, pool));
+      const int y = sampling.matchAt(rng.uniform(0, pool));
       const cv::Point2f d = src[static_cast<size_t>(x)] - src[static_cast<size_t>(y)];
       if (x != y && d.dot(d) >= spacing * spacing) i = x, j = y;
     }
