@@ -115,6 +115,29 @@ cv::Matx33d refineHomography(const cv::Matx33d& H, const std::vector<cv::Point2f
   return out;
 }
 
+void summariseEstimate(HomographyEstimate& out, const cv::Matx33d& H,
+                       const std::vector<int>& inliers, const std::vector<cv::Point2f>& src,
+                       const std::vector<cv::Point2f>& dst, const RansacParams& params) {
+  out.H = H;
+  out.inliers.assign(src.size(), 0);
+  double sq = 0;
+  for (int i : inliers) {
+    out.inliers[static_cast<size_t>(i)] = 1;
+    const double e = transferError(H, src[static_cast<size_t>(i)], dst[static_cast<size_t>(i)]);
+    sq += e * e;
+  }
+  out.inlierCount = static_cast<int>(inliers.size());
+  out.inlierRatio = src.empty() ? 0.0 : static_cast<double>(out.inlierCount) / src.size();
+  out.rmsTransferError = out.inlierCount > 0 ? std::sqrt(sq / out.inlierCount) : 0.0;
+  out.success = false;
+  if (out.inlierRatio < params.minInlierRatio)
+    out.failure = "inlier ratio " + std::to_string(out.inlierRatio) + " below minimum";
+  else if (out.inlierCount < params.minInliers)
+    out.failure = "only " + std::to_string(out.inlierCount) + " inliers";
+  else
+    out.success = true;
+}
+
 RobustHomographyEstimator::RobustHomographyEstimator(RansacParams params) : params_(params) {
   params_.check();
 }
@@ -223,24 +246,11 @@ HomographyEstimate RobustHomographyEstimator::estimate(const std::vector<cv::Poi
     std::vector<int> in = inliersOf(H, src, dst, threshold);
     if (in.size() >= 4) bestInliers = std::move(in);
   }
-  out.H = H;
-  double sq = 0;
-  for (int i : bestInliers) {
-    out.inliers[static_cast<size_t>(i)] = 1;
-    const double e = transferError(H, src[static_cast<size_t>(i)], dst[static_cast<size_t>(i)]);
-    sq += e * e;
-  }
-  out.inlierCount = static_cast<int>(bestInliers.size());
-  out.inlierRatio = static_cast<double>(out.inlierCount) / n;
-  out.rmsTransferError = out.inlierCount > 0 ? std::sqrt(sq / out.inlierCount) : 0.0;
-  if (!acceptable(H))
+  summariseEstimate(out, H, bestInliers, src, dst, params_);
+  if (!acceptable(H)) {
+    out.success = false;
     out.failure = "near-singular homography";
-  else if (out.inlierRatio < params_.minInlierRatio)
-    out.failure = "inlier ratio " + std::to_string(out.inlierRatio) + " below minimum";
-  else if (out.inlierCount < params_.minInliers)
-    out.failure = "only " + std::to_string(out.inlierCount) + " inliers";
-  else
-    out.success = true;
+  }
   return out;
 }
 

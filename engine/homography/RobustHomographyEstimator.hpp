@@ -46,6 +46,12 @@ class RobustHomographyEstimator {
   RansacParams params_;
 };
 
+// Fills `out` from H and its inlier indices (flags, count, ratio over all matches, RMS transfer
+// error) and applies the params' inlier rules: success, or the failure naming the rule broken.
+void summariseEstimate(HomographyEstimate& out, const cv::Matx33d& H,
+                       const std::vector<int>& inliers, const std::vector<cv::Point2f>& src,
+                       const std::vector<cv::Point2f>& dst, const RansacParams& params);
+
 // Minimises sum |H src_i - dst_i|^2 over the 8 free entries of H (Levenberg-Marquardt with the
 // analytic Jacobian, in normalised coordinates); returns the refined H (h33 = 1), or H unchanged
 // when the solve fails.

@@ -128,22 +128,7 @@ HomographyEstimate RotationHomographyEstimator::estimate(const std::vector<cv::P
     best = std::move(in);
     R = bestRotation(a, b, best);
   }
-  out.H = toH(R);
-  double sq = 0;
-  for (int i : best) {
-    out.inliers[static_cast<size_t>(i)] = 1;
-    const double e = transferError(out.H, src[static_cast<size_t>(i)], dst[static_cast<size_t>(i)]);
-    sq += e * e;
-  }
-  out.inlierCount = static_cast<int>(best.size());
-  out.inlierRatio = static_cast<double>(out.inlierCount) / n;
-  out.rmsTransferError = out.inlierCount > 0 ? std::sqrt(sq / out.inlierCount) : 0.0;
-  if (out.inlierRatio < params_.minInlierRatio)
-    out.failure = "inlier ratio " + std::to_string(out.inlierRatio) + " below minimum";
-  else if (out.inlierCount < params_.minInliers)
-    out.failure = "only " + std::to_string(out.inlierCount) + " inliers";
-  else
-    out.success = true;
+  summariseEstimate(out, toH(R), best, src, dst, params_);
   return out;
 }
 

@@ -25,11 +25,10 @@ TEST(TrackCommand, HomographyModeWritesTheCsv) {
   for (std::string l; std::getline(in, l);) ++lines;
   EXPECT_EQ(lines, 6);
   // With the simulator's camera (enables the rotation-only model).
-  const auto calibrated =
-      runReftrack("track --reference " + (dir / "sim" / "reference_a.png").string() +
-                      " --camera " + (dir / "sim" / "camera.yml").string() + " --input " +
-                      (dir / "sim" / "frames").string(),
-                  dir);
+  const auto calibrated = runReftrack(
+      "track --reference " + (dir / "sim" / "reference_a.png").string() + " --camera " +
+          (dir / "sim" / "camera.yml").string() + " --input " + (dir / "sim" / "frames").string(),
+      dir);
   ASSERT_EQ(calibrated.exitCode, 0) << calibrated.err;
   EXPECT_NE(calibrated.out.find("5 frames, 5 tracked"), std::string::npos) << calibrated.out;
 }
@@ -57,10 +56,10 @@ TEST(TrackCommand, UsageAndRuntimeErrors) {
             2);
   EXPECT_EQ(runReftrack("track --reference missing.png --input x", dir).exitCode, 2);
   // A camera file that is not one: a runtime failure naming it.
-  const auto badCamera = runReftrack("track --reference " + (dir / "ref.png").string() +
-                                         " --camera " + (dir / "ref.png").string() + " --input " +
-                                         (dir / "ref.png").string(),
-                                     dir);
+  const auto badCamera =
+      runReftrack("track --reference " + (dir / "ref.png").string() + " --camera " +
+                      (dir / "ref.png").string() + " --input " + (dir / "ref.png").string(),
+                  dir);
   EXPECT_EQ(badCamera.exitCode, 1);
   EXPECT_NE(badCamera.err.find("ref.png"), std::string::npos) << badCamera.err;
   // A flat reference has no corners: a runtime failure with one message.

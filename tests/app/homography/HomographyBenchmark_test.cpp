@@ -33,8 +33,7 @@ TEST(HomographyBenchmark, BothMethodsRunOnTheSameFramesAgainstExactTruth) {
   // of the reference, so here (wide overlap) it changes nothing: every frame registered, no
   // less accurate (measured: the same 0.418 px median over 150 frames).
   EXPECT_EQ(r.calibratedTracker.registered, 12);
-  EXPECT_LE(finiteMedian(r.calibratedTracker.cornerErrorPx),
-            finiteMedian(r.tracker.cornerErrorPx));
+  EXPECT_LE(finiteMedian(r.calibratedTracker.cornerErrorPx), finiteMedian(r.tracker.cornerErrorPx));
   for (double e : r.baseline.cornerErrorPx) {
     if (!std::isnan(e)) {
       EXPECT_TRUE(std::isfinite(e));
