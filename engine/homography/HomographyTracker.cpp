@@ -281,19 +281,20 @@ void HomographyTracker::matchAndFit(Attempt& a, const cv::Mat& gray, const Refer
   a.est = estimator_.estimate(a.src, a.dst, gray.size(), score);
   a.tracked = judge(a.est, a.inlierRatio, a.failure);
   if (a.est.success) a.hypothesis = a.est.H;
-  if (rotationEstimator_) {
-    // The rotation-only model when the general one fails, and in its place when it explains the
-    // matches as well (the simpler model: a general H fitted to a sliver of overlap is pinned
-    // down only along it; measured on a 0.5 degree-per-frame pan at 29.5-31 degrees, 320x240:
-    // general H 1.5-1.7 px annotation error where the rotation model gives < 0.5).
+  // The rotation-only model when the general one fails, and in its place when it explains the
+  // matches as well (the simpler model: a general H fitted to a sliver of overlap is pinned down
+  // only along it; measured on a 0.5 degree-per-frame pan at 29.5-31 degrees, 320x240: general
+  // H 1.5-1.7 px annotation error where the rotation model gives < 0.5). A registered frame
+  // whose inliers are not a thin strip (kThinSupportFraction) keeps the general fit, so the
+  // rotation model is not even estimated there (most tracked frames).
+  const bool thin = a.est.success && narrowestSpread(a.src, a.est.inliers) <
+                                         kThinSupportFraction * std::hypot(gray.cols, gray.rows);
+  if (rotationEstimator_ && (!a.tracked || thin)) {
     HomographyEstimate rot = rotationEstimator_->estimate(a.src, a.dst, gray.size(), score);
-    // "As well": as many inliers, a transfer error on them hardly above the general fit's
-    // (which has 5 more parameters to absorb noise with), and only where the general fit rests
-    // on a thin strip (kThinSupportFraction).
-    const double diagonal = std::hypot(gray.cols, gray.rows);
-    const bool asGood = a.est.success && rot.inlierCount >= a.est.inlierCount &&
-                        rot.rmsTransferError <= kRotationRmsTolerance * a.est.rmsTransferError &&
-                        narrowestSpread(a.src, a.est.inliers) < kThinSupportFraction * diagonal;
+    // "As well": as many inliers and a transfer error on them hardly above the general fit's
+    // (which has 5 more parameters to absorb noise with).
+    const bool asGood = thin && rot.inlierCount >= a.est.inlierCount &&
+                        rot.rmsTransferError <= kRotationRmsTolerance * a.est.rmsTransferError;
     if (rot.success && (!a.est.success || rot.inlierCount >= a.est.inlierCount))
       a.hypothesis = rot.H;
     if (rot.success && (!a.tracked || asGood)) {
