@@ -1,0 +1,50 @@
+#pragma once
+// Relocaliser (issue 13): cold start and relocalisation from any view in the mapped volume.
+// Matches the frame's viewpoint-invariant keypoints to the references' stored keypoint layers
+// (a retrieval step picks the references to match when there are many), PnP-RANSAC on their 3D
+// points, then a least-squares refinement on the inliers. Returns a candidate pose only with
+// enough inlier support; the 6-DOF tracker then refines and verifies it with the paper's warped
+// correlation (PoseTracker::seed) before reporting it. locate() is const and thread-compatible.
+#include <memory>
+#include <opencv2/core.hpp>
+#include <optional>
+#include <string>
+
+#include "engine/config/RelocalisationParams.hpp"
+#include "engine/geometry/RigidPose.hpp"
+#include "engine/reference/MultiReferenceMap.hpp"
+
+namespace reftrack {
+
+struct RelocalisationCandidate {
+  RigidPose worldToCamera;
+  int reference = -1;  // the reference with the most inlier matches
+  int inliers = 0;
+  int matches = 0;
+  double reprojectionRmsPx = 0.0;
+};
+
+struct RelocalisationAttempt {
+  std::optional<RelocalisationCandidate> candidate;  // nullopt: no pose with enough support
+  std::string message;                               // why not, or what was found
+  double ms = 0.0;
+};
+
+// Builds the keypoint layer of every view of `map` (detect, describe, triangulate each keypoint
+// from the views that see it under the known poses); replaces views[i].keypoints and keypointKind.
+void buildReferenceKeypoints(MultiReferenceMap& map, const RelocalisationParams& params);
+
+class Relocaliser {
+ public:
+  // Uses the map's stored keypoint layers (throws reftrack::Error when they are missing or were
+  // made with another detector than params.keypoints).
+  Relocaliser(const MultiReferenceMap& map, const RelocalisationParams& params);
+  ~Relocaliser();
+  RelocalisationAttempt locate(const cv::Mat& frame) const;  // BGR or grey, the map's size
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace reftrack

@@ -1,0 +1,57 @@
+#pragma once
+// MultiReferenceTracker (issue 13): the 6-DOF tracker over a map of N references. Per frame it
+// runs the paper's two-reference PoseTracker on the pair of references best placed for the
+// predicted pose (ReferenceSelector: position and viewing direction, with hysteresis), so the
+// cost of a tracked frame does not grow with N; switching pairs hands the current pose over to
+// the new pair's tracker (PoseTracker::seed). On the first frame and whenever tracking is lost,
+// the Relocaliser proposes a pose from anywhere in the mapped volume, which the pair tracker
+// refines and verifies with the warped correlation on the same frame before it is reported.
+#include <memory>
+#include <utility>
+
+#include "engine/config/TrackerParams.hpp"
+#include "engine/estimation/CornerVarianceModel.hpp"
+#include "engine/estimation/MotionModel.hpp"
+#include "engine/reference/MultiReferenceMap.hpp"
+#include "engine/tracking/PoseTracker.hpp"
+
+namespace reftrack {
+
+struct RelocalisationReport {
+  bool attempted = false;  // the relocaliser ran on this frame
+  bool succeeded = false;  // ... and its candidate was verified by the pair tracker
+  double ms = 0.0;         // time of the attempt (keypoints, matching, PnP, verification)
+  int inliers = 0;         // PnP inliers of the candidate
+  std::string message;
+};
+
+struct MultiReferenceResult {
+  PoseTrackingResult tracking;   // T_Ak etc. relative to reference `referenceA`
+  int referenceA = -1, referenceB = -1;  // the pair in use on this frame (-1: none)
+  RelocalisationReport relocalisation;
+};
+
+class MultiReferenceTracker {
+ public:
+  MultiReferenceTracker(MultiReferenceMap map, const TrackerParams& params,
+                        PoseTrackerLimits limits = {});
+  ~MultiReferenceTracker();
+
+  // One frame (BGR or grey, the map's image size; throws reftrack::Error on another size).
+  MultiReferenceResult process(const cv::Mat& frame);
+
+  void setParams(const TrackerParams& params);  // takes effect on the next frame
+  void setMotionModel(const ArMotionModel& model);
+  void setCornerVarianceModel(const CornerVarianceModel& model);
+  void reset();  // back to initialising
+  const MultiReferenceMap& map() const;
+  TrackingState state() const;
+  std::pair<int, int> referencesInUse() const;  // (-1, -1) before the first pose
+  int relocalisationAttempts() const;           // since construction
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace reftrack
