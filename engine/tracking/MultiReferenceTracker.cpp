@@ -29,6 +29,11 @@ struct FrameAttempts {
   }
 };
 
+MultiReferenceMap checked(MultiReferenceMap map) {
+  map.check();
+  return map;
+}
+
 }  // namespace
 
 struct MultiReferenceTracker::Impl {
@@ -57,7 +62,7 @@ struct MultiReferenceTracker::Impl {
   int relocalisationAttempts = 0;
 
   Impl(MultiReferenceMap m, const TrackerParams& p, PoseTrackerLimits l)
-      : map(std::move(m)), params(p), limits(l), selector(map, p.references) {
+      : map(checked(std::move(m))), params(p), limits(l), selector(map, p.references) {
     params.check();
     limits.check();
     if (map.size() < 2)

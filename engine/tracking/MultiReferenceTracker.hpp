@@ -26,7 +26,7 @@ struct RelocalisationReport {
 };
 
 struct MultiReferenceResult {
-  PoseTrackingResult tracking;   // T_Ak etc. relative to reference `referenceA`
+  PoseTrackingResult tracking;           // T_Ak etc. relative to reference `referenceA`
   int referenceA = -1, referenceB = -1;  // the pair in use on this frame (-1: none)
   RelocalisationReport relocalisation;
 };
