@@ -4,8 +4,10 @@
 
 #include <algorithm>
 
+#include "TestPaths.hpp"
 #include "engine/core/Error.hpp"
 #include "engine/relocalisation/CornerWorld.hpp"
+#include "engine/relocalisation/Relocaliser.hpp"
 
 namespace reftrack {
 namespace {
@@ -121,6 +123,39 @@ TEST(BuildReferenceKeypoints, RefusesOneViewAndWrongSizes) {
   RelocalisationParams bad;
   bad.keypoints = "brisk";
   EXPECT_THROW(buildReferenceKeypoints(map, bad), Error);
+}
+
+}  // namespace
+}  // namespace reftrack
+
+namespace reftrack {
+namespace {
+
+// The layer is saved with the map (format v2) and loaded back unchanged: the loaded map
+// relocalises a frame to the very same pose.
+TEST(BuildReferenceKeypoints, LayerSurvivesSavingAndLoadingTheMap) {
+  const CornerWorld world;
+  MultiReferenceMap map = cornerMap(world, 3);
+  buildReferenceKeypoints(map, RelocalisationParams{});
+  const auto dir = test::freshTempDir("ReferenceKeypointBuilder_save");
+  map.save(dir / "map");
+  const MultiReferenceMap loaded = MultiReferenceMap::load(dir / "map");
+  EXPECT_EQ(loaded.keypointKind, "orb");
+  ASSERT_EQ(loaded.size(), 3);
+  for (int v = 0; v < 3; ++v) {
+    const ReferenceKeypoints& a = map.views[static_cast<std::size_t>(v)].keypoints;
+    const ReferenceKeypoints& b = loaded.views[static_cast<std::size_t>(v)].keypoints;
+    ASSERT_EQ(a.keypoints.size(), b.keypoints.size());
+    EXPECT_EQ(a.pointCount(), b.pointCount());
+    EXPECT_EQ(cv::norm(a.descriptors, b.descriptors, cv::NORM_INF), 0.0);
+  }
+  const cv::Mat frame = world.render(CornerWorld::referencePoses(3, 1.2)[1], 9);
+  const RelocalisationAttempt before = Relocaliser(map, RelocalisationParams{}).locate(frame);
+  const RelocalisationAttempt after = Relocaliser(loaded, RelocalisationParams{}).locate(frame);
+  ASSERT_TRUE(before.candidate && after.candidate) << before.message << " / " << after.message;
+  EXPECT_LT(RigidPose::translationDistance(before.candidate->worldToCamera,
+                                           after.candidate->worldToCamera),
+            1e-6);
 }
 
 }  // namespace
