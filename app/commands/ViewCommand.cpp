@@ -16,6 +16,7 @@
 #include "app/viewer/ViewerApp.hpp"
 #include "engine/calibration/CalibrationBoard.hpp"
 #include "engine/core/Error.hpp"
+#include "engine/reference/MultiReferenceMap.hpp"
 
 namespace reftrack::app {
 

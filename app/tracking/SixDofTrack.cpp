@@ -13,6 +13,7 @@
 #include "engine/core/AtomicFile.hpp"
 #include "engine/core/Error.hpp"
 #include "engine/geometry/TumTrajectory.hpp"
+#include "engine/reference/MultiReferenceMap.hpp"
 #include "render/context/GlContext.hpp"
 
 namespace reftrack::app {
