@@ -223,7 +223,10 @@ RelocalisationAttempt Relocaliser::Impl::locate(const cv::Mat& frame) const {
     return out;
   }
 
-  // PnP-RANSAC (AP3P minimal solver), then Levenberg-Marquardt on the inliers.
+  // PnP-RANSAC (AP3P minimal solver), then Levenberg-Marquardt on the inliers. Measured against
+  // P3P, SQPnP (EPnP samples) and USAC MAGSAC++ (cv::UsacParams): the same views relocalised
+  // (39/40 synthetic, 161/161 postcard) with centre errors within 0.2 mm of each other, and the
+  // RANSAC stage is 0.4-6 ms of an attempt, the times of all four within the run-to-run noise.
   const double threshold = params.reprojectionPx * resolutionScale(size);
   cv::Mat rvec, tvec;
   std::vector<int> ransacInliers;
