@@ -24,6 +24,7 @@ void TrackerParams::check() const {
   wideBaseline.check();
   pose.check();
   relocalisation.check();
+  references.check();
 }
 
 void TrackerParams::write(cv::FileStorage& fs) const {
@@ -55,6 +56,10 @@ void TrackerParams::write(cv::FileStorage& fs) const {
      << "relocalisation"
      << "{";
   relocalisation.write(fs);
+  fs << "}"
+     << "references"
+     << "{";
+  references.write(fs);
   fs << "}";
 }
 
@@ -70,6 +75,7 @@ void TrackerParams::read(const cv::FileNode& root) {
   wideBaseline.read(root["wide_baseline"]);
   pose.read(root["pose"]);
   relocalisation.read(root["relocalisation"]);
+  references.read(root["references"]);
 }
 
 TrackerParams TrackerParams::load(const std::filesystem::path& file) {

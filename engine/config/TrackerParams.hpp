@@ -1,7 +1,8 @@
 #pragma once
 // TrackerParams: every tracking parameter in one YAML file (the file `--params` accepts and the
 // viewer's panels edit). Sections: corners, correlation, ransac, homography, wide_baseline, pose,
-// relocalisation, plus `mode: 6dof|homography`. Missing keys keep the paper's defaults.
+// relocalisation, references (N-reference maps), plus `mode: 6dof|homography`. Missing keys keep
+// the paper's defaults.
 #include <filesystem>
 #include <string>
 
@@ -11,6 +12,7 @@
 #include "engine/config/PoseParams.hpp"
 #include "engine/config/RansacParams.hpp"
 #include "engine/config/RelocalisationParams.hpp"
+#include "engine/config/ReferenceSelectionParams.hpp"
 #include "engine/config/WideBaselineParams.hpp"
 
 namespace reftrack {
@@ -30,6 +32,7 @@ struct TrackerParams {
   WideBaselineParams wideBaseline;
   PoseParams pose;
   RelocalisationParams relocalisation;
+  ReferenceSelectionParams references;
 
   void check() const;
   void write(cv::FileStorage& fs) const;  // all sections at the top level of fs

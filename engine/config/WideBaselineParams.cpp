@@ -17,6 +17,7 @@ void WideBaselineParams::check() const {
   requireIntInRange("wide_baseline.frame_to_frame_corners", frameToFrameCornersAt320x240, 8,
                     1000000);
   requireFiniteInRange("wide_baseline.frame_corner_quality", frameCornerQuality, 1e-9, 1.0);
+  requireIntInRange("wide_baseline.seed_search", seedSearchAt320x240, 1, 10000);
 }
 
 namespace {
@@ -38,7 +39,7 @@ void WideBaselineParams::write(cv::FileStorage& fs) const {
   fs << "dx" << dx << "dy" << dy << "n" << halfWindow << "min_score" << minScore
      << "affine_neighbours" << affineNeighbours << "reference_corners" << referenceCornersAt320x240
      << "frame_to_frame_corners" << frameToFrameCornersAt320x240 << "frame_corner_quality"
-     << frameCornerQuality;
+     << frameCornerQuality << "seed_search" << seedSearchAt320x240;
 }
 
 void WideBaselineParams::read(const cv::FileNode& node) {
@@ -51,6 +52,7 @@ void WideBaselineParams::read(const cv::FileNode& node) {
   readConfigValue(node, s, "reference_corners", referenceCornersAt320x240);
   readConfigValue(node, s, "frame_to_frame_corners", frameToFrameCornersAt320x240);
   readConfigValue(node, s, "frame_corner_quality", frameCornerQuality);
+  readConfigValue(node, s, "seed_search", seedSearchAt320x240);
   check();
 }
 

@@ -24,6 +24,11 @@ struct WideBaselineParams {
   // strongest corner's contrast). Real hand-held video of a card on a bare table: 0.01 finds
   // ~28 corners per 640x480 frame and tracks 86 of 161 frames, 1e-4 tracks all 161.
   double frameCornerQuality = 1e-4;
+  // A frame started from a given pose (PoseTracker::seed: a hand-over between reference pairs or
+  // a relocalisation candidate) has no frame-to-frame step; its candidates are searched within
+  // +-seedSearch pixels (at 320x240, scaled) of the map points' projections, which absorbs a
+  // seed a few centimetres or degrees off (at 1 m and 640x480, 1 degree ~ 9 px).
+  int seedSearchAt320x240 = 30;
 
   void check() const;
   void write(cv::FileStorage& fs) const;

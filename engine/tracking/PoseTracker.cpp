@@ -5,6 +5,7 @@
 #include <cmath>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
+#include <utility>
 
 #include "engine/config/ResolutionScale.hpp"
 #include "engine/core/Error.hpp"
@@ -142,6 +143,8 @@ struct PoseTracker::Impl {
   // matchAtScale) when matching at the reference's own scale finds too little.
   static constexpr double kInitScales[] = {2.0, 1.5, 0.6, 0.75, 2.5};
   std::size_t nextInitScale = 0;
+  // PoseTracker::seed: the next frame's prediction (world -> camera), consumed by process().
+  std::optional<RigidPose> seedPose;
 
   Impl(ReferenceMap m, const TrackerParams& p, PoseTrackerLimits l)
       : map(std::move(m)), params(p), limits(l) {
@@ -197,6 +200,26 @@ struct PoseTracker::Impl {
     prevB.clear();
   }
 
+  // Previous-match seeds from a predicted pose: every map point in front of the camera and
+  // projecting near the frame (within half its size outside it: neighbours for the local affine
+  // maps of corners near the border), paired with its corner in A and in B.
+  void seedsFromPose(const RigidPose& worldToCamera, cv::Size size) {
+    prevA.clear();
+    prevB.clear();
+    const RigidPose TAk = worldToCamera * map.T_A.inverse();
+    const double mx = 0.5 * size.width, my = 0.5 * size.height;
+    for (const ReferenceMatch& m : map.matches) {
+      const Eigen::Vector3d X = TAk * m.pointA;
+      if (!(X.z() > 1e-6)) continue;
+      const Eigen::Vector2d p = map.camera.projectDistorted(X);
+      if (!(p.x() > -mx && p.y() > -my && p.x() < size.width + mx && p.y() < size.height + my))
+        continue;
+      const cv::Point2f pixel(static_cast<float>(p.x()), static_cast<float>(p.y()));
+      prevA.push_back({pixel, m.cornerA});
+      prevB.push_back({pixel, m.cornerB});
+    }
+  }
+
   PoseTrackingResult process(const cv::Mat& frame);
 };
 
@@ -220,7 +243,9 @@ PoseTrackingResult PoseTracker::Impl::process(const cv::Mat& frame) {
   r.corners = static_cast<int>(corners.size());
   r.frameCorners = pixels;
   r.timings.push_back({"corners", msSince(t)});
-  const bool wasTracking = state == TrackingState::Tracking && !prevA.empty();
+  // A seeded frame is matched like a tracked one, from the seed's projections (seedsFromPose).
+  const std::optional<RigidPose> seeded = std::exchange(seedPose, std::nullopt);
+  const bool wasTracking = seeded || (state == TrackingState::Tracking && !prevA.empty());
   // Frame-to-frame matching only predicts W = L H (Eq. 18): the strongest corners suffice, and
   // their windows are kept for the next frame.
   const std::size_t f2fCount = std::min<std::size_t>(
@@ -248,12 +273,19 @@ PoseTrackingResult PoseTracker::Impl::process(const cv::Mat& frame) {
   if (wasTracking) {
     t = Clock::now();
     // Frame-to-frame homography V_k -> V_{k-1}: only a prediction for W = L H (Eq. 18), so
-    // OpenCV's RANSAC homography suffices here; a failure falls back to the identity.
-    const std::vector<CornerMatch> f2f =
-        narrow.match(f2fPoints, f2fWindows, prevF2F, prevF2FWindows,
-                     params.correlation.searchHalfWidthPx * scale,
-                     params.correlation.searchHalfHeightPx * scale);
+    // OpenCV's RANSAC homography suffices here; a failure falls back to the identity. A seeded
+    // frame's "previous frame" is the seed's projection of the map: H is the identity.
     cv::Matx33d H = cv::Matx33d::eye();
+    WideBaselineParams wideParams = params.wideBaseline;
+    if (seeded) {
+      seedsFromPose(*seeded, gray.size());
+      wideParams.dx = wideParams.dy = wideParams.seedSearchAt320x240;
+    }
+    const std::vector<CornerMatch> f2f =
+        seeded ? std::vector<CornerMatch>{}
+               : narrow.match(f2fPoints, f2fWindows, prevF2F, prevF2FWindows,
+                              params.correlation.searchHalfWidthPx * scale,
+                              params.correlation.searchHalfHeightPx * scale);
     if (f2f.size() >= 8) {
       std::vector<cv::Point2f> a, b;
       for (const CornerMatch& m : f2f) {
@@ -263,13 +295,13 @@ PoseTrackingResult PoseTracker::Impl::process(const cv::Mat& frame) {
       const cv::Mat Hm = cv::findHomography(a, b, cv::RANSAC, 3.0 * scale);
       if (!Hm.empty()) H = cv::Matx33d(Hm);
     }
-    r.timings.push_back({"frame-to-frame", msSince(t)});
+    r.timings.push_back({seeded ? "seed" : "frame-to-frame", msSince(t)});
     t = Clock::now();
     // The frame's correlation windows, sampled once for both references.
     const MatchableFrame matchable =
         MatchableFrame::build(gray, pixels, params.wideBaseline.halfWindow);
     r.timings.push_back({"frame windows", msSince(t)});
-    const WideBaselineMatcher wide(params.wideBaseline);
+    const WideBaselineMatcher wide(wideParams);
     t = Clock::now();
     mA = wide.match(matchable, H, prevA, refA.matchable);
     r.timings.push_back({"match A", msSince(t)});
@@ -384,6 +416,24 @@ PoseTrackingResult PoseTracker::Impl::process(const cv::Mat& frame) {
       o.push_back(object[static_cast<std::size_t>(i)]);
       im.push_back(image[static_cast<std::size_t>(i)]);
     }
+    // OpenCV re-fits the pose of a P3P/AP3P RANSAC on its inliers with EPnP, which can fail on
+    // a planar scene seen almost as a reference saw it (measured on the plane tests: all 73
+    // inliers of the best model, a returned pose 40 degrees off that none of them fits). SQPnP
+    // is globally optimal for any point configuration; the fit that reprojects the inliers
+    // better is refined.
+    auto inlierRms = [&](const cv::Vec3d& rv, const cv::Vec3d& tv) {
+      std::vector<cv::Point2d> back;
+      cv::projectPoints(o, rv, tv, Kcv, cv::noArray(), back);
+      double sum = 0.0;
+      for (std::size_t i = 0; i < back.size(); ++i) sum += std::pow(cv::norm(back[i] - im[i]), 2);
+      return std::sqrt(sum / static_cast<double>(back.size()));
+    };
+    cv::Vec3d rSq, tSq;
+    if (cv::solvePnP(o, im, Kcv, cv::noArray(), rSq, tSq, false, cv::SOLVEPNP_SQPNP) &&
+        inlierRms(rSq, tSq) < inlierRms(rvec, tvec)) {
+      rvec = rSq;
+      tvec = tSq;
+    }
     cv::solvePnPRefineLM(o, im, Kcv, cv::noArray(), rvec, tvec);
   }
   Vector6d xLin;
@@ -473,7 +523,9 @@ PoseTrackingResult PoseTracker::Impl::process(const cv::Mat& frame) {
                 std::to_string(r.supportSdPx) + " px (SD)");
     return finish(r);
   }
-  r.message = wasTracking ? "tracking" : "initialised from the reference images";
+  r.message = seeded        ? "tracking from a seeded pose"
+              : wasTracking ? "tracking"
+                            : "initialised from the reference images";
   r.state = TrackingState::Tracking;
   state = TrackingState::Tracking;
   r.T_Ak = TAk;
@@ -519,7 +571,13 @@ void PoseTracker::setCornerVarianceModel(const CornerVarianceModel& model) {
   model.check();
   impl_->varianceModel = model;
 }
+void PoseTracker::seed(const RigidPose& worldToCamera) {
+  if (!worldToCamera.allFinite()) throw Error("PoseTracker::seed: non-finite pose");
+  impl_->seedPose = worldToCamera;
+  impl_->regularizer->reset();
+}
 void PoseTracker::reset() {
+  impl_->seedPose.reset();
   impl_->state = TrackingState::Initialising;
   impl_->regularizer->reset();
   impl_->prevA.clear();

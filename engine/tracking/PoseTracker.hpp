@@ -73,6 +73,12 @@ class PoseTracker {
   void setMotionModel(const ArMotionModel& model);
   void setCornerVarianceModel(const CornerVarianceModel& model);
   void reset();  // back to initialising
+  // The next process() starts from this world->camera pose instead of the previous frame (a
+  // hand-over from another reference pair, or a relocalisation candidate): the reference corners'
+  // 3D points projected with it seed the wide-baseline matching (H = identity, candidates within
+  // wide_baseline.seed_search), then the usual outlier rejection, pose estimation and support
+  // checks run, so a wrong seed ends Lost, never in a wrong pose. Resets the regulariser history.
+  void seed(const RigidPose& worldToCamera);
   const ReferenceMap& map() const;
   TrackingState state() const;
 

@@ -29,6 +29,7 @@ TEST(TrackerParams, SaveLoadRoundTripsEverySection) {
   in.pose.estimator = PoseEstimatorKind::Standard;
   in.relocalisation.keypoints = "akaze";
   in.relocalisation.minInliers = 31;
+  in.references.switchAfterFrames = 6;
   in.save(dir / "params.yml");
   const TrackerParams out = TrackerParams::load(dir / "params.yml");
   EXPECT_EQ(out.mode, TrackingMode::Homography);
@@ -40,6 +41,7 @@ TEST(TrackerParams, SaveLoadRoundTripsEverySection) {
   EXPECT_EQ(out.pose.estimator, PoseEstimatorKind::Standard);
   EXPECT_EQ(out.relocalisation.keypoints, "akaze");
   EXPECT_EQ(out.relocalisation.minInliers, 31);
+  EXPECT_EQ(out.references.switchAfterFrames, 6);
   // Only the final file remains (atomic write leaves no temporary behind).
   EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir),
                           std::filesystem::directory_iterator()),

@@ -18,6 +18,7 @@ TEST(WideBaselineParams, RoundTrip) {
   in.referenceCornersAt320x240 = 33;
   in.frameToFrameCornersAt320x240 = 21;
   in.frameCornerQuality = 0.002;
+  in.seedSearchAt320x240 = 17;
   WideBaselineParams out;
   roundTrip(in, out);
   EXPECT_EQ(out.dx, 7);
@@ -27,6 +28,7 @@ TEST(WideBaselineParams, RoundTrip) {
   EXPECT_EQ(out.referenceCornersAt320x240, 33);
   EXPECT_EQ(out.frameToFrameCornersAt320x240, 21);
   EXPECT_DOUBLE_EQ(out.frameCornerQuality, 0.002);
+  EXPECT_EQ(out.seedSearchAt320x240, 17);
 }
 
 TEST(WideBaselineParams, CountsScaleWithTheImageArea) {
@@ -56,6 +58,7 @@ TEST(WideBaselineParams, EveryBadFieldIsNamed) {
        [&](WideBaselineParams& p) { p.frameCornerQuality = nan; }},
       {"wide_baseline.frame_corner_quality",
        [](WideBaselineParams& p) { p.frameCornerQuality = 0.0; }},
+      {"wide_baseline.seed_search", [](WideBaselineParams& p) { p.seedSearchAt320x240 = 0; }},
   };
   for (const auto& [field, mutate] : cases) {
     WideBaselineParams p;

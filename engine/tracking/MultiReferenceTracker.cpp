@@ -1,0 +1,288 @@
+#include "engine/tracking/MultiReferenceTracker.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "engine/core/Error.hpp"
+#include "engine/tracking/ReferenceSelector.hpp"
+
+namespace reftrack {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+}
+
+// The pair trackers' attempts on one frame, in order: the last one is the frame's result, the
+// earlier ones count as stages (their time and why they failed).
+struct FrameAttempts {
+  std::vector<StageTiming> earlier;
+  std::string earlierMessages;
+  void failed(const std::string& what, const PoseTrackingResult& r) {
+    earlier.push_back({what, r.totalMs});
+    earlierMessages += (earlierMessages.empty() ? "" : "; ") + what + ": " + r.message;
+  }
+};
+
+}  // namespace
+
+struct MultiReferenceTracker::Impl {
+  struct CachedTracker {
+    ReferencePair pair;
+    std::unique_ptr<PoseTracker> tracker;
+    std::uint64_t lastUsed = 0;
+  };
+
+  MultiReferenceMap map;
+  TrackerParams params;
+  PoseTrackerLimits limits;
+  std::optional<ArMotionModel> motionModel;
+  std::optional<CornerVarianceModel> varianceModel;
+  ReferenceSelector selector;
+  std::vector<CachedTracker> cache;
+  std::uint64_t frameCount = 0;
+  // Invariant: only the active pair's tracker may be in the Tracking state; any other cached
+  // tracker is reset before it is left, so it never resumes from stale matches.
+  ReferencePair active;
+  TrackingState state = TrackingState::Initialising;
+  std::optional<RigidPose> lastPose;  // world -> camera of the last tracked frame
+  int framesSinceTracked = 0;
+  std::vector<ReferencePair> initialisationPairs;  // the paper's start near a reference
+  std::size_t nextInitialisationPair = 0;
+  int relocalisationAttempts = 0;
+
+  Impl(MultiReferenceMap m, const TrackerParams& p, PoseTrackerLimits l)
+      : map(std::move(m)), params(p), limits(l), selector(map, p.references) {
+    params.check();
+    limits.check();
+    if (map.size() < 2)
+      throw Error("MultiReferenceTracker: the map has " + std::to_string(map.size()) +
+                  " references, at least 2 are needed");
+    buildInitialisationPairs();
+  }
+
+  // One pair per reference: its candidate partner sharing the most map points, so a start near
+  // any reference finds a pair to initialise with (the paper's start near V_A, for every view).
+  void buildInitialisationPairs() {
+    initialisationPairs.clear();
+    for (int v = 0; v < map.size(); ++v) {
+      ReferencePair bestPair;
+      int most = -1;
+      for (const ReferencePair& p : selector.candidatePairs())
+        if ((p.a == v || p.b == v) && selector.sharedPoints(p.a, p.b) > most) {
+          most = selector.sharedPoints(p.a, p.b);
+          bestPair = p;
+        }
+      if (bestPair.valid() && std::find(initialisationPairs.begin(), initialisationPairs.end(),
+                                        bestPair) == initialisationPairs.end())
+        initialisationPairs.push_back(bestPair);
+    }
+  }
+
+  PoseTracker& trackerFor(ReferencePair pair) {
+    for (CachedTracker& c : cache)
+      if (c.pair == pair) {
+        c.lastUsed = frameCount;
+        return *c.tracker;
+      }
+    if (static_cast<int>(cache.size()) >= params.references.cachedTrackers) {
+      // Evict the least recently used tracker other than the active pair's.
+      auto victim = cache.end();
+      for (auto it = cache.begin(); it != cache.end(); ++it)
+        if (!(it->pair == active) && (victim == cache.end() || it->lastUsed < victim->lastUsed))
+          victim = it;
+      if (victim != cache.end()) cache.erase(victim);
+    }
+    auto tracker = std::make_unique<PoseTracker>(map.pair(pair.a, pair.b), params, limits);
+    if (motionModel) tracker->setMotionModel(*motionModel);
+    if (varianceModel) tracker->setCornerVarianceModel(*varianceModel);
+    cache.push_back({pair, std::move(tracker), frameCount});
+    return *cache.back().tracker;
+  }
+
+  void resetIfCached(ReferencePair pair) {
+    for (CachedTracker& c : cache)
+      if (c.pair == pair) c.tracker->reset();
+  }
+
+  // `pair` produced a tracked frame: it becomes the pair in use.
+  void tracked(ReferencePair pair, const PoseTrackingResult& r) {
+    if (active.valid() && !(active == pair)) resetIfCached(active);
+    active = pair;
+    if (!(selector.current() == pair)) selector.setCurrent(pair);  // keeps a pending switch
+    state = TrackingState::Tracking;
+    lastPose = r.worldToCamera;
+    framesSinceTracked = 0;
+  }
+
+  MultiReferenceResult process(const cv::Mat& frame);
+  MultiReferenceResult track(const cv::Mat& frame, FrameAttempts& attempts, ReferencePair& used);
+  PoseTrackingResult recover(const cv::Mat& frame, FrameAttempts& attempts, ReferencePair& used,
+                             RelocalisationReport& relocalisation);
+};
+
+MultiReferenceResult MultiReferenceTracker::Impl::process(const cv::Mat& frame) {
+  const Clock::time_point start = Clock::now();
+  if (frame.empty()) throw Error("MultiReferenceTracker: empty frame");
+  if (frame.size() != map.camera.imageSize())
+    throw Error("MultiReferenceTracker: frame size " + std::to_string(frame.cols) + "x" +
+                std::to_string(frame.rows) + " differs from the map's camera " +
+                std::to_string(map.camera.imageSize().width) + "x" +
+                std::to_string(map.camera.imageSize().height));
+  ++frameCount;
+  FrameAttempts attempts;
+  ReferencePair used;
+  MultiReferenceResult out;
+  if (state == TrackingState::Tracking && active.valid() && lastPose) {
+    out = track(frame, attempts, used);
+  } else {
+    out.tracking = recover(frame, attempts, used, out.relocalisation);
+  }
+  if (out.tracking.state == TrackingState::Tracking) {
+    tracked(used, out.tracking);
+  } else {
+    if (state == TrackingState::Tracking) framesSinceTracked = 0;
+    ++framesSinceTracked;
+    state = out.tracking.state;
+  }
+  out.referenceA = used.a;
+  out.referenceB = used.b;
+  if (!attempts.earlierMessages.empty() && out.tracking.state != TrackingState::Tracking)
+    out.tracking.message = attempts.earlierMessages + "; " + out.tracking.message;
+  out.tracking.timings.insert(out.tracking.timings.begin(), attempts.earlier.begin(),
+                              attempts.earlier.end());
+  out.tracking.totalMs = msSince(start);
+  return out;
+}
+
+// Tracking: the pair best placed for the last pose (with hysteresis); on a switch the new pair's
+// tracker is seeded with the last pose, and when that hand-over fails the pair in use goes on.
+MultiReferenceResult MultiReferenceTracker::Impl::track(const cv::Mat& frame,
+                                                        FrameAttempts& attempts,
+                                                        ReferencePair& used) {
+  MultiReferenceResult out;
+  const ReferencePair wanted = selector.select(*lastPose);
+  if (!(wanted == active)) {
+    PoseTracker& next = trackerFor(wanted);
+    next.seed(*lastPose);
+    out.tracking = next.process(frame);
+    used = wanted;
+    if (out.tracking.state == TrackingState::Tracking) {
+      out.tracking.message = "handed over from references " + std::to_string(active.a) + "+" +
+                             std::to_string(active.b);
+      return out;
+    }
+    next.reset();
+    attempts.failed("hand-over to " + std::to_string(wanted.a) + "+" + std::to_string(wanted.b),
+                    out.tracking);
+    selector.setCurrent(active);
+  }
+  PoseTracker& current = trackerFor(active);
+  if (current.state() != TrackingState::Tracking) current.seed(*lastPose);  // evicted meanwhile
+  out.tracking = current.process(frame);
+  used = active;
+  return out;
+}
+
+// Not tracking: (1) shortly after a loss, the last pose seeds the pair in use (a black or blurred
+// frame: the camera has not gone far); (2) the paper's start near a reference, one
+// initialisation pair per frame in turn, the pair last in use first.
+PoseTrackingResult MultiReferenceTracker::Impl::recover(const cv::Mat& frame,
+                                                        FrameAttempts& attempts,
+                                                        ReferencePair& used,
+                                                        RelocalisationReport& relocalisation) {
+  (void)relocalisation;
+  if (lastPose && active.valid() && framesSinceTracked <= params.references.reseedFrames) {
+    PoseTracker& t = trackerFor(active);
+    t.seed(*lastPose);
+    PoseTrackingResult r = t.process(frame);
+    used = active;
+    if (r.state == TrackingState::Tracking) {
+      r.message = "re-acquired from the last pose";
+      return r;
+    }
+    attempts.failed("re-seed", r);
+    t.reset();
+  }
+  // The pair last in use on even attempts, the others in turn on odd ones (only the turn moves
+  // on with the frames: each pair's tracker also cycles through its scale hypotheses).
+  ReferencePair pair = initialisationPairs[nextInitialisationPair % initialisationPairs.size()];
+  if (active.valid() && framesSinceTracked % 2 == 0)
+    pair = active;
+  else
+    ++nextInitialisationPair;
+  PoseTracker& t = trackerFor(pair);
+  if (t.state() == TrackingState::Tracking) t.reset();
+  PoseTrackingResult r = t.process(frame);
+  used = pair;
+  if (r.state != TrackingState::Tracking) t.reset();
+  return r;
+}
+
+MultiReferenceTracker::MultiReferenceTracker(MultiReferenceMap map, const TrackerParams& params,
+                                             PoseTrackerLimits limits)
+    : impl_(std::make_unique<Impl>(std::move(map), params, limits)) {}
+MultiReferenceTracker::~MultiReferenceTracker() = default;
+
+MultiReferenceResult MultiReferenceTracker::process(const cv::Mat& frame) {
+  return impl_->process(frame);
+}
+
+void MultiReferenceTracker::setParams(const TrackerParams& params) {
+  params.check();
+  Impl& m = *impl_;
+  ReferenceSelector selector(m.map, params.references);
+  const ReferencePair keep = m.selector.current();
+  m.selector = std::move(selector);
+  const auto& pairs = m.selector.candidatePairs();
+  if (keep.valid() && std::find(pairs.begin(), pairs.end(), keep) != pairs.end())
+    m.selector.setCurrent(keep);
+  m.params = params;
+  m.buildInitialisationPairs();
+  for (Impl::CachedTracker& c : m.cache) c.tracker->setParams(params);
+  while (static_cast<int>(m.cache.size()) > params.references.cachedTrackers) {
+    auto victim =
+        std::min_element(m.cache.begin(), m.cache.end(), [&](const auto& x, const auto& y) {
+          return (x.pair == m.active ? UINT64_MAX : x.lastUsed) <
+                 (y.pair == m.active ? UINT64_MAX : y.lastUsed);
+        });
+    m.cache.erase(victim);
+  }
+}
+
+void MultiReferenceTracker::setMotionModel(const ArMotionModel& model) {
+  model.check();
+  impl_->motionModel = model;
+  for (Impl::CachedTracker& c : impl_->cache) c.tracker->setMotionModel(model);
+}
+
+void MultiReferenceTracker::setCornerVarianceModel(const CornerVarianceModel& model) {
+  model.check();
+  impl_->varianceModel = model;
+  for (Impl::CachedTracker& c : impl_->cache) c.tracker->setCornerVarianceModel(model);
+}
+
+void MultiReferenceTracker::reset() {
+  Impl& m = *impl_;
+  for (Impl::CachedTracker& c : m.cache) c.tracker->reset();
+  m.active = {};
+  m.selector.reset();
+  m.state = TrackingState::Initialising;
+  m.lastPose.reset();
+  m.framesSinceTracked = 0;
+}
+
+const MultiReferenceMap& MultiReferenceTracker::map() const { return impl_->map; }
+TrackingState MultiReferenceTracker::state() const { return impl_->state; }
+std::pair<int, int> MultiReferenceTracker::referencesInUse() const {
+  if (!impl_->lastPose) return {-1, -1};
+  return {impl_->active.a, impl_->active.b};
+}
+int MultiReferenceTracker::relocalisationAttempts() const { return impl_->relocalisationAttempts; }
+
+}  // namespace reftrack
