@@ -51,7 +51,7 @@ CommandRegistration registerExperimentSixDofCommand(CLI::App& parent) {
   auto o = std::make_shared<Options>();
   o->simulation.frames = 1000;
   sub->add_option("--preset", o->simulation.preset, "Camera path")
-      ->check(CLI::IsMember({"handheld", "orbit", "rotate", "static", "forward"}));
+      ->check(CLI::IsMember(simulationPresets()));
   sub->add_option("--frames", o->simulation.frames, "Frames")->check(CLI::Range(3, 100000));
   sub->add_option("--size", o->size, "Image size WxH")->check(imageSizeValidator());
   sub->add_option("--seed", o->simulation.seed, "Noise and shake seed");

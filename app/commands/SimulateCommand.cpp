@@ -25,8 +25,9 @@ CommandRegistration registerSimulateCommand(CLI::App& parent) {
   CLI::App* sub = parent.add_subcommand(
       "simulate", "Render a ground-truth sequence of the synthetic desk scene");
   sub->footer(
-      "Writes DIR/frames/000000.png..., camera.yml, reference_a.png, reference_b.png,\n"
-      "references.txt, scene.yml and groundtruth.txt (TUM: camera pose in the world, i.e. the\n"
+      "Writes DIR/frames/000000.png..., camera.yml, reference_00.png... (one per reference,\n"
+      "the first two also as reference_a.png, reference_b.png), references.txt (TUM, view i at\n"
+      "timestamp i), scene.yml and groundtruth.txt (TUM: camera pose in the world, i.e. the\n"
       "inverse of world->camera). World frame = the ArUco marker's frame (DICT_6X6_250 id 23,\n"
       "0.2 m). The scene is fixed; --seed changes sensor noise and hand shake only.");
   SimulationOptions& o = args->options;
@@ -48,6 +49,10 @@ CommandRegistration registerSimulateCommand(CLI::App& parent) {
   sub->add_option("--fov", o.fovDeg, "Horizontal field of view, degrees")
       ->check(CLI::Range(10.0, 150.0))
       ->capture_default_str();
+  sub->add_option("--references", o.references,
+                  "Reference views: A, B, then views on the walkaround arc (default: walkaround 6, "
+                  "other presets 2)")
+      ->check(CLI::Range(2, kMaxReferences));
   sub->add_option("--fps", o.fps, "Frame rate of the ground-truth timestamps")
       ->check(CLI::Range(0.001, 1000.0))
       ->capture_default_str();

@@ -8,6 +8,7 @@
 
 #include "app/simulator/LookAt.hpp"
 #include "app/simulator/SensorNoise.hpp"
+#include "app/simulator/WalkaroundArc.hpp"
 #include "engine/core/Error.hpp"
 
 namespace reftrack::app {
@@ -100,13 +101,37 @@ RigidPose CameraPath::handheld(double s) const {
       RigidPose(Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitZ()).toRotationMatrix(),
                 Eigen::Vector3d::Zero()) *
       lookAtPose(eye, target);
+  return tremor(s) * smooth;
+}
+
+RigidPose CameraPath::tremor(double s) const {
   // The tremor fades in over the first frames so frame 0 is exactly view A.
+  const double t = s / fps_;
   const double shakeGain = s > 0.0 ? 1.0 - std::exp(-s / 4.0) : 0.0;
   Vector6d shake;
   for (int i = 0; i < 6; ++i) shake[i] = shakeGain * shake_[i](t);
   const Vector6d tremor =
       (Vector6d() << shake[3], shake[4], shake[5], shake[0], shake[1], shake[2]).finished();
-  return RigidPose::fromVector6(tremor) * smooth;
+  return RigidPose::fromVector6(tremor);
+}
+
+RigidPose CameraPath::walkaround(double s) const {
+  const double u = progress(s);
+  const ArcPosition a = WalkaroundArc::positionOf(eye_, target_);
+  const double halfSpan = WalkaroundArc::kHalfSpanDeg * kDeg;
+  // Azimuth: one full sine period whose phase puts u = 0 (and u = 1) at A's azimuth.
+  const double phase = std::asin(std::clamp(a.azimuthRad / halfSpan, -1.0, 1.0));
+  ArcPosition p;
+  p.azimuthRad = halfSpan * std::sin(2.0 * kPi * u + phase);
+  // Distance: two periods (far, near, far, near) on a log scale about A's distance.
+  p.distance = a.distance * std::pow(WalkaroundArc::kDistanceFactor, std::sin(4.0 * kPi * u));
+  p.elevationRad =
+      a.elevationRad + WalkaroundArc::kElevationSwingDeg * kDeg * std::sin(6.0 * kPi * u);
+  // Looked-at point: wanders within 4 cm of the target ("roughly at the scene").
+  const Eigen::Vector3d target =
+      target_ + 0.023 * Eigen::Vector3d(std::sin(5.0 * kPi * u), std::sin(7.0 * kPi * u),
+                                        std::sin(3.0 * kPi * u));
+  return tremor(s) * lookAtPose(WalkaroundArc::eyeAt(p, target_), target);
 }
 
 RigidPose CameraPath::at(double s) const {
@@ -114,6 +139,7 @@ RigidPose CameraPath::at(double s) const {
   const double u = progress(s);
   if (preset_ == "static") return start();
   if (preset_ == "handheld") return handheld(s);
+  if (preset_ == "walkaround") return walkaround(s);
   if (preset_ == "orbit") {
     const double angle = kOrbitArc * std::sin(2.0 * kPi * u);
     Eigen::Vector3d eye =

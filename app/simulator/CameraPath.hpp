@@ -7,6 +7,9 @@
 //   rotate    pure rotation about A's optical centre: yaw +-40 deg about the vertical, small pitch
 //   static    A throughout
 //   forward   along A's line of sight from 2 m to 0.6 m from `target`
+//   walkaround  around `target` on the WalkaroundArc: azimuth +-65 deg (130 deg span, out and
+//             back through A), distance 0.60-1.65 m, elevation A's +-10 deg, looking at points
+//             within 4 cm of `target`, plus the handheld tremor; starts and ends at A
 #include <Eigen/Core>
 #include <array>
 #include <cstdint>
@@ -34,7 +37,9 @@ class CameraPath {
     double operator()(double t) const;
   };
   RigidPose handheld(double s) const;
-  double progress(double s) const;  // s / (frames - 1); 0 for a single frame
+  RigidPose walkaround(double s) const;
+  RigidPose tremor(double s) const;  // hand shake, fading in over the first frames
+  double progress(double s) const;   // s / (frames - 1); 0 for a single frame
 
   std::string preset_;
   int frames_;

@@ -2,6 +2,7 @@
 
 #include "app/simulator/DeskScene.hpp"
 #include "app/simulator/LookAt.hpp"
+#include "app/simulator/ReferencePlacement.hpp"
 #include "app/simulator/SensorNoise.hpp"
 #include "engine/core/Error.hpp"
 
@@ -20,8 +21,9 @@ SceneSimulator::SceneSimulator(SimulationOptions options) : options_(std::move(o
   camera_ = PinholeCamera::fromFieldOfView(options_.size, options_.fovDeg);
   const DeskScene scene = buildDeskScene();
   marker_ = scene.marker;
-  referenceA_ = lookAtPose(scene.referenceEyeA, scene.contentCentre);
-  referenceB_ = lookAtPose(scene.referenceEyeB, scene.contentCentre);
+  lookedAt_ = scene.contentCentre;
+  references_ = placeReferenceViews(options_.referenceCount(), scene.referenceEyeA,
+                                    scene.referenceEyeB, scene.contentCentre);
   path_ = std::make_unique<CameraPath>(options_, scene.referenceEyeA, scene.contentCentre);
   renderer_ = std::make_unique<render::SceneRenderer>();
   for (const render::TexturedMesh& mesh : scene.meshes) renderer_->addMesh(mesh);
@@ -73,9 +75,19 @@ cv::Mat SceneSimulator::renderFrame(int k) {
 cv::Mat SceneSimulator::renderReference(char which) {
   if (which != 'A' && which != 'B')
     throw Error(std::string("simulator: reference view must be 'A' or 'B', got '") + which + "'");
-  return renderView(which == 'A' ? referenceA_ : referenceB_,
-                    mixSeed(mixSeed(options_.seed, kReferenceStream), static_cast<unsigned>(which)),
-                    options_.noiseSigma);
+  return renderReferenceView(which == 'A' ? 0 : 1);
+}
+
+cv::Mat SceneSimulator::renderReferenceView(int index) {
+  const int count = static_cast<int>(references_.size());
+  if (index < 0 || index >= count)
+    throw Error("simulator: reference view " + std::to_string(index) + " is outside 0.." +
+                std::to_string(count - 1));
+  // Views A and B keep the noise streams they always had ('A', 'B'); the others follow on.
+  const std::uint64_t stream =
+      index < 2 ? static_cast<std::uint64_t>(index == 0 ? 'A' : 'B') : 256u + index;
+  return renderView(references_[static_cast<std::size_t>(index)],
+                    mixSeed(mixSeed(options_.seed, kReferenceStream), stream), options_.noiseSigma);
 }
 
 cv::Mat SceneSimulator::renderDepth(const RigidPose& worldToCamera) {

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <memory>
 #include <opencv2/core.hpp>
+#include <vector>
 
 #include "app/simulator/CameraPath.hpp"
 #include "app/simulator/SimulationOptions.hpp"
@@ -26,9 +27,14 @@ class SceneSimulator {
 
   const SimulationOptions& options() const { return options_; }
   const PinholeCamera& camera() const { return camera_; }
-  const MarkerSpec& marker() const { return marker_; }      // DICT_6X6_250, id 23, side 0.2 m
-  RigidPose referencePoseA() const { return referenceA_; }  // world->camera
-  RigidPose referencePoseB() const { return referenceB_; }
+  const MarkerSpec& marker() const { return marker_; }         // DICT_6X6_250, id 23, side 0.2 m
+  RigidPose referencePoseA() const { return references_[0]; }  // world->camera
+  RigidPose referencePoseB() const { return references_[1]; }
+  // options.referenceCount() world->camera poses: A, B, then the views placeReferenceViews puts
+  // on the walkaround arc.
+  const std::vector<RigidPose>& referencePoses() const { return references_; }
+  // The point every reference view and the camera paths look at (world frame).
+  const Eigen::Vector3d& lookedAt() const { return lookedAt_; }
   RigidPose framePose(
       int k) const;  // world->camera, exact ground truth; throws outside 0..frames-1
 
@@ -36,6 +42,8 @@ class SceneSimulator {
   // deterministic in (seed, k).
   cv::Mat renderFrame(int k);
   cv::Mat renderReference(char which);  // 'A' or 'B' (with sensor noise)
+  // Reference view `index` (0 = A, 1 = B, ...; with sensor noise); throws outside the range.
+  cv::Mat renderReferenceView(int index);
   cv::Mat renderView(const RigidPose& worldToCamera, std::uint64_t noiseSeed, double noiseSigma);
   cv::Mat renderDepth(const RigidPose& worldToCamera);  // CV_32F camera z in metres (true surface)
 
@@ -46,7 +54,8 @@ class SceneSimulator {
   SimulationOptions options_;
   PinholeCamera camera_;
   MarkerSpec marker_;
-  RigidPose referenceA_, referenceB_;
+  std::vector<RigidPose> references_;
+  Eigen::Vector3d lookedAt_ = Eigen::Vector3d::Zero();
   std::unique_ptr<CameraPath> path_;
   std::unique_ptr<render::SceneRenderer> renderer_;
 };

@@ -9,8 +9,8 @@
 namespace reftrack::app {
 
 const std::vector<std::string>& simulationPresets() {
-  static const std::vector<std::string> names = {"handheld", "orbit", "rotate", "static",
-                                                 "forward"};
+  static const std::vector<std::string> names = {"handheld", "orbit",   "rotate",
+                                                 "static",   "forward", "walkaround"};
   return names;
 }
 
@@ -19,6 +19,11 @@ std::optional<cv::Size> parseImageSize(const std::string& text) {
   std::smatch m;
   if (!std::regex_match(text, m, form)) return std::nullopt;
   return cv::Size(std::stoi(m[1].str()), std::stoi(m[2].str()));
+}
+
+int SimulationOptions::referenceCount() const {
+  if (references != 0) return references;
+  return preset == "walkaround" ? 6 : 2;
 }
 
 void SimulationOptions::check() const {
@@ -41,6 +46,9 @@ void SimulationOptions::check() const {
     throw Error("simulation fovDeg must be in [10, 150] degrees");
   if (!(std::isfinite(fps) && fps > 0.0 && fps <= 1000.0))
     throw Error("simulation fps must be in (0, 1000]");
+  if (references != 0 && (references < 2 || references > kMaxReferences))
+    throw Error("simulation references must be 0 (the preset's default) or 2.." +
+                std::to_string(kMaxReferences) + ", got " + std::to_string(references));
 }
 
 }  // namespace reftrack::app

@@ -1,7 +1,8 @@
 #pragma once
 // SimulationOptions: what `reftrack simulate` renders — camera path preset, frame count, image
 // size, seed (sensor noise and hand shake; the scene itself never changes), noise level, motion
-// blur, field of view and frame rate. check() throws reftrack::Error naming the bad field.
+// blur, field of view, frame rate and the number of reference views. check() throws reftrack::Error
+// naming the bad field.
 #include <cstdint>
 #include <opencv2/core.hpp>
 #include <optional>
@@ -11,7 +12,7 @@
 namespace reftrack::app {
 
 struct SimulationOptions {
-  std::string preset = "handheld";  // handheld | orbit | rotate | static | forward
+  std::string preset = "handheld";  // handheld | orbit | rotate | static | forward | walkaround
   int frames = 300;
   cv::Size size{640, 480};
   std::uint64_t seed = 1;
@@ -19,8 +20,13 @@ struct SimulationOptions {
   bool blur = false;        // motion blur (average of sub-frame renders)
   double fovDeg = 60.0;     // horizontal field of view
   double fps = 30.0;
-  void check() const;  // throws reftrack::Error naming the bad field
+  int references = 0;          // reference views; 0: the preset's default (walkaround 6, others 2)
+  int referenceCount() const;  // `references`, or the preset's default when it is 0
+  void check() const;          // throws reftrack::Error naming the bad field
 };
+
+// Reference views a simulation may place (2 .. kMaxReferences).
+inline constexpr int kMaxReferences = 16;
 
 // The camera path presets, in the order `reftrack simulate --help` lists them.
 const std::vector<std::string>& simulationPresets();

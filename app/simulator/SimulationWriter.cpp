@@ -24,6 +24,25 @@ std::string frameName(int k) {
   return name;
 }
 
+std::string referenceName(int i) {
+  char name[32];
+  std::snprintf(name, sizeof name, "reference_%02d.png", i);
+  return name;
+}
+
+// reference_NN.png of an earlier run with more references.
+void removeStaleReferences(const fs::path& dir, int count) {
+  static const std::regex form("reference_([0-9]{2})\\.png");
+  std::smatch m;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    const std::string name = entry.path().filename().string();
+    if (std::regex_match(name, m, form) && std::stoi(m[1].str()) >= count) {
+      std::error_code ec;
+      fs::remove(entry.path(), ec);
+    }
+  }
+}
+
 void writePng(const fs::path& file, const cv::Mat& image) {
   // Level 1: noisy frames barely compress further, and encoding dominates the write time.
   const std::vector<int> params = {cv::IMWRITE_PNG_COMPRESSION, 1};
@@ -72,6 +91,7 @@ void writeSceneDescription(const SceneSimulator& sim, const fs::path& file) {
     out << "fov_deg" << o.fovDeg;
     out << "noise_sigma" << o.noiseSigma;
     out << "motion_blur" << (o.blur ? 1 : 0);
+    out << "reference_count" << o.referenceCount();
     out << "poses"
         << "groundtruth.txt and references.txt: TUM, camera pose in the world (camera->world)";
     out.release();
@@ -91,10 +111,15 @@ void writeSimulation(SceneSimulator& sim, const fs::path& outDir) {
   sim.camera().save(outDir / "camera.yml");
   writeSceneDescription(sim, outDir / "scene.yml");
   TumTrajectory references;
-  references.poses = {{0.0, sim.referencePoseA()}, {1.0, sim.referencePoseB()}};
+  const std::vector<RigidPose>& referencePoses = sim.referencePoses();
+  for (std::size_t i = 0; i < referencePoses.size(); ++i) {
+    references.poses.push_back({static_cast<double>(i), referencePoses[i]});
+    const cv::Mat image = sim.renderReferenceView(static_cast<int>(i));
+    writePng(outDir / referenceName(static_cast<int>(i)), image);
+    if (i < 2) writePng(outDir / (i == 0 ? "reference_a.png" : "reference_b.png"), image);
+  }
+  removeStaleReferences(outDir, static_cast<int>(referencePoses.size()));
   references.save(outDir / "references.txt");
-  writePng(outDir / "reference_a.png", sim.renderReference('A'));
-  writePng(outDir / "reference_b.png", sim.renderReference('B'));
 
   // Render frame k (GL, this thread) while frame k-1 is encoded on another thread.
   TumTrajectory groundTruth;

@@ -55,6 +55,19 @@ TEST(SimulateCommand, WritesASequenceThatRoundTrips) {
   EXPECT_NEAR(truth.poses[2].timestamp, 2.0 / 30.0, 1e-6);
 }
 
+TEST(SimulateCommand, WalkaroundWritesItsReferenceViews) {
+  const fs::path dir = test::freshTempDir("SimulateCommand_Walkaround");
+  const fs::path out = dir / "seq";
+  const CommandRun run = simulate(
+      "--preset walkaround --references 4 --frames 2 --size 160x120 --out " + out.string(), dir);
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  for (const char* f : {"reference_00.png", "reference_01.png", "reference_02.png",
+                        "reference_03.png", "reference_a.png", "reference_b.png"})
+    EXPECT_TRUE(fs::exists(out / f)) << f;
+  EXPECT_FALSE(fs::exists(out / "reference_04.png"));
+  EXPECT_EQ(TumTrajectory::load(out / "references.txt").poses.size(), 4u);
+}
+
 TEST(SimulateCommand, UsageErrorsExitWithTwo) {
   const fs::path dir = test::freshTempDir("SimulateCommand_Usage");
   const std::string out = " --out " + (dir / "x").string();
@@ -63,6 +76,8 @@ TEST(SimulateCommand, UsageErrorsExitWithTwo) {
   EXPECT_EQ(simulate("--size 640x" + out, dir).exitCode, 2);
   EXPECT_EQ(simulate("--frames 0" + out, dir).exitCode, 2);
   EXPECT_EQ(simulate("--noise -1" + out, dir).exitCode, 2);
+  EXPECT_EQ(simulate("--references 1" + out, dir).exitCode, 2);
+  EXPECT_EQ(simulate("--references 17" + out, dir).exitCode, 2);
   EXPECT_EQ(simulate("--preset static", dir).exitCode, 2);  // --out missing
   EXPECT_FALSE(fs::exists(dir / "x"));
 }

@@ -21,7 +21,7 @@ std::string checkError(const SimulationOptions& o) {
 TEST(SimulationOptions, DefaultsAreValidAndEveryPresetIsAccepted) {
   SimulationOptions o;
   EXPECT_EQ(checkError(o), "");
-  EXPECT_EQ(simulationPresets().size(), 5u);
+  EXPECT_EQ(simulationPresets().size(), 6u);
   for (const std::string& p : simulationPresets()) {
     o.preset = p;
     EXPECT_EQ(checkError(o), "") << p;
@@ -45,12 +45,26 @@ TEST(SimulationOptions, CheckNamesTheBadField) {
       {[](SimulationOptions& o) { o.fovDeg = 170; }, "fovDeg"},
       {[](SimulationOptions& o) { o.fps = 0; }, "fps"},
       {[](SimulationOptions& o) { o.fps = std::numeric_limits<double>::infinity(); }, "fps"},
+      {[](SimulationOptions& o) { o.references = 1; }, "references"},
+      {[](SimulationOptions& o) { o.references = kMaxReferences + 1; }, "references"},
   };
   for (const auto& [mutate, field] : cases) {
     SimulationOptions o;
     mutate(o);
     EXPECT_NE(checkError(o).find(field), std::string::npos) << field << ": " << checkError(o);
   }
+}
+
+TEST(SimulationOptions, ReferenceCountDefaultsPerPreset) {
+  SimulationOptions o;
+  EXPECT_EQ(o.referenceCount(), 2);
+  o.preset = "walkaround";
+  EXPECT_EQ(o.referenceCount(), 6);
+  o.references = 2;
+  EXPECT_EQ(o.referenceCount(), 2);
+  o.preset = "handheld";
+  o.references = 8;
+  EXPECT_EQ(o.referenceCount(), 8);
 }
 
 TEST(SimulationOptions, ParsesImageSizes) {

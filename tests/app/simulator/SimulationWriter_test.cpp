@@ -62,6 +62,8 @@ TEST(SimulationWriter, WritesACompleteRoundTrippingSequence) {
   }
   const TumTrajectory refs = TumTrajectory::load(dir / "references.txt");
   ASSERT_EQ(refs.poses.size(), 2u);
+  EXPECT_TRUE(fs::exists(dir / "reference_00.png"));
+  EXPECT_TRUE(fs::exists(dir / "reference_01.png"));
   EXPECT_LT((refs.poseAt(0.0)->matrix4() - sim.referencePoseA().matrix4()).norm(), 1e-9);
   EXPECT_LT((refs.poseAt(1.0)->matrix4() - sim.referencePoseB().matrix4()).norm(), 1e-9);
   EXPECT_EQ(cv::norm(cv::imread((dir / "reference_b.png").string()), sim.renderReference('B'),
@@ -95,4 +97,39 @@ TEST(SimulationWriter, UnwritableFolderIsAClearError) {
     EXPECT_NE(std::string(e.what()).find("cannot create output folder"), std::string::npos)
         << e.what();
   }
+}
+
+TEST(SimulationWriter, WritesEveryReferenceViewAndItsPose) {
+  const auto context = render::createHeadlessContext();
+  SimulationOptions o = smallRun();
+  o.preset = "walkaround";
+  o.frames = 2;
+  SceneSimulator sim(o);
+  ASSERT_EQ(sim.referencePoses().size(), 6u);  // the walkaround default
+  const fs::path dir = test::freshTempDir("SimulationWriter_References");
+  std::ofstream(dir / "reference_07.png") << "stale";  // from a run with more references
+  writeSimulation(sim, dir);
+  const TumTrajectory refs = TumTrajectory::load(dir / "references.txt");
+  ASSERT_EQ(refs.poses.size(), 6u);
+  for (int i = 0; i < 6; ++i) {
+    char name[32];
+    std::snprintf(name, sizeof name, "reference_%02d.png", i);
+    EXPECT_NEAR(refs.poses[i].timestamp, i, 1e-9);
+    EXPECT_LT((refs.poses[i].worldToCamera.matrix4() - sim.referencePoses()[i].matrix4()).norm(),
+              1e-9)
+        << i;
+    const cv::Mat image = cv::imread((dir / name).string(), cv::IMREAD_UNCHANGED);
+    ASSERT_EQ(image.size(), cv::Size(160, 120)) << name;
+    EXPECT_EQ(cv::norm(image, sim.renderReferenceView(i), cv::NORM_INF), 0.0) << name;
+  }
+  EXPECT_FALSE(fs::exists(dir / "reference_07.png"));
+  // The two-reference layout stays: A and B are views 0 and 1.
+  EXPECT_EQ(cv::norm(cv::imread((dir / "reference_a.png").string()), sim.renderReferenceView(0),
+                     cv::NORM_INF),
+            0.0);
+  EXPECT_EQ(cv::norm(cv::imread((dir / "reference_b.png").string()), sim.renderReferenceView(1),
+                     cv::NORM_INF),
+            0.0);
+  cv::FileStorage scene((dir / "scene.yml").string(), cv::FileStorage::READ);
+  EXPECT_EQ(static_cast<int>(scene["reference_count"]), 6);
 }
