@@ -11,8 +11,8 @@
 #include "engine/config/HomographyTrackerParams.hpp"
 #include "engine/config/PoseParams.hpp"
 #include "engine/config/RansacParams.hpp"
-#include "engine/config/RelocalisationParams.hpp"
 #include "engine/config/ReferenceSelectionParams.hpp"
+#include "engine/config/RelocalisationParams.hpp"
 #include "engine/config/WideBaselineParams.hpp"
 
 namespace reftrack {

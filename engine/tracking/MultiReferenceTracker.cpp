@@ -30,6 +30,15 @@ struct FrameAttempts {
   }
 };
 
+std::string relocalisationYaml(const RelocalisationParams& p) {
+  cv::FileStorage fs(".yml", cv::FileStorage::WRITE | cv::FileStorage::MEMORY);
+  fs << "r"
+     << "{";
+  p.write(fs);
+  fs << "}";
+  return fs.releaseAndGetString();
+}
+
 MultiReferenceMap checked(MultiReferenceMap map) {
   map.check();
   return map;
@@ -300,9 +309,13 @@ void MultiReferenceTracker::setParams(const TrackerParams& params) {
   const auto& pairs = m.selector.candidatePairs();
   if (keep.valid() && std::find(pairs.begin(), pairs.end(), keep) != pairs.end())
     m.selector.setCurrent(keep);
+  const TrackerParams previous = m.params;
   m.params = params;
   m.buildInitialisationPairs();
-  m.buildRelocaliser();
+  // The relocaliser is rebuilt only when its own parameters change (the viewer applies every
+  // edit of any panel field through here).
+  if (relocalisationYaml(params.relocalisation) != relocalisationYaml(previous.relocalisation))
+    m.buildRelocaliser();
   for (Impl::CachedTracker& c : m.cache) c.tracker->setParams(params);
   while (static_cast<int>(m.cache.size()) > params.references.cachedTrackers) {
     auto victim =

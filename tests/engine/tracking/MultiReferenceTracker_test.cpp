@@ -257,6 +257,33 @@ TEST(MultiReferenceTracker, RelocalisesAfterBlackFramesOnTheFirstClearFrame) {
   }
 }
 
+// setParams takes effect on the next frame: switching relocalisation off stops the attempts,
+// switching it on again resumes them; tracking goes on across a change of the selection
+// parameters.
+TEST(MultiReferenceTracker, ParameterChangesTakeEffectOnTheNextFrame) {
+  const PlaneMultiWorld world = fourReferences();
+  TrackerParams params;
+  params.references.reseedFrames = 0;
+  MultiReferenceTracker tracker(withKeypoints(world), params);
+  ASSERT_EQ(tracker.process(world.render(along(0.0, 0), 700)).tracking.state,
+            TrackingState::Tracking);
+  params.references.switchMargin = 0.5;
+  tracker.setParams(params);
+  ASSERT_EQ(tracker.process(world.render(along(0.01, 1), 701)).tracking.state,
+            TrackingState::Tracking);
+  const cv::Mat black(world.size, CV_8UC3, cv::Scalar::all(0));
+  tracker.process(black);  // lost
+  params.relocalisation.enabled = false;
+  tracker.setParams(params);
+  EXPECT_FALSE(tracker.process(black).relocalisation.attempted);
+  params.relocalisation.enabled = true;
+  tracker.setParams(params);
+  EXPECT_TRUE(tracker.process(black).relocalisation.attempted);
+  params.references.minSharedPoints = 100000;  // no pair qualifies: refused, nothing changes
+  EXPECT_THROW(tracker.setParams(params), Error);
+  EXPECT_TRUE(tracker.process(black).relocalisation.attempted);
+}
+
 TEST(MultiReferenceTracker, AFrameOfTheWrongSizeIsAClearError) {
   const PlaneMultiWorld world = fourReferences();
   MultiReferenceTracker tracker(world.map(), TrackerParams{});
