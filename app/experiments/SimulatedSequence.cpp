@@ -8,7 +8,9 @@
 #include "app/cli/ProgressBar.hpp"
 #include "app/simulator/SceneSimulator.hpp"
 #include "engine/core/Error.hpp"
+#include "engine/reference/MultiReferenceMap.hpp"
 #include "engine/reference/MultiReferencePreparer.hpp"
+#include "engine/relocalisation/ReferenceKeypointBuilder.hpp"
 
 namespace reftrack::app {
 
@@ -24,7 +26,7 @@ MultiReferenceMap prepareSimulatedReferences(SceneSimulator& sim, int count,
     images.push_back({sim.renderReferenceView(i), "simulated reference " + std::to_string(i)});
   MultiReferenceMap map =
       MultiReferencePreparer(sim.camera(), params).prepare(images, sim.marker()).map;
-  (void)keypoints;
+  buildReferenceKeypoints(map, keypoints);
   return map;
 }
 
@@ -74,7 +76,7 @@ fs::path framePath(const fs::path& dir, int k) {
 
 void store(const SimulatedSequence& s, const fs::path& dir) {
   fs::create_directories(dir / "frames");
-  s.preparation.map.save(dir / "map");
+  MultiReferenceMap::fromPair(s.preparation.map).save(dir / "map");
   const std::vector<int> png = {cv::IMWRITE_PNG_COMPRESSION, 1};
   for (std::size_t k = 0; k < s.frames.size(); ++k) {
     const fs::path file = framePath(dir, static_cast<int>(k));
@@ -87,7 +89,7 @@ void store(const SimulatedSequence& s, const fs::path& dir) {
 SimulatedSequence load(const SimulationOptions& options, const fs::path& dir) {
   SimulatedSequence s;
   s.options = options;
-  s.preparation.map = ReferenceMap::load(dir / "map");
+  s.preparation.map = MultiReferenceMap::load(dir / "map").pair(0, 1);
   s.camera = s.preparation.map.camera;
   s.groundTruth = TumTrajectory::load(dir / "groundtruth.txt");
   if (static_cast<int>(s.groundTruth.poses.size()) != options.frames)
@@ -119,6 +121,14 @@ SimulatedSequence cachedSimulatedSequence(const SimulationOptions& options,
     if (maps == SequenceMaps::AllReferences) {
       if (fs::exists(referencesDir / MultiReferenceMap::kFileName)) {
         s.references = MultiReferenceMap::load(referencesDir);
+        // Stored without a keypoint layer, or with another kind: built now and stored again.
+        bool layered = s.references->keypointKind == keypoints.keypoints;
+        for (const ReferenceView& v : s.references->views)
+          layered = layered && !v.keypoints.empty();
+        if (!layered) {
+          buildReferenceKeypoints(*s.references, keypoints);
+          s.references->save(referencesDir);
+        }
       } else {
         SceneSimulator sim(options);
         s.references = prepareSimulatedReferences(sim, options.referenceCount(), {}, keypoints);

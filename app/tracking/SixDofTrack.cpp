@@ -13,32 +13,40 @@
 #include "engine/core/AtomicFile.hpp"
 #include "engine/core/Error.hpp"
 #include "engine/geometry/TumTrajectory.hpp"
+#include "engine/reference/MultiReferenceMap.hpp"
 #include "render/context/GlContext.hpp"
 
 namespace reftrack::app {
 
 namespace {
 
-const char* kStages[] = {"corners", "frame-to-frame", "initialise", "match A",
-                         "match B", "outliers",       "pose"};
+const char* kStages[] = {"corners", "frame-to-frame", "seed",     "initialise",
+                         "match A", "match B",        "outliers", "pose"};
+
+// A CSV field: quoted, inner quotes doubled (messages hold commas).
+std::string quoted(const std::string& text) {
+  std::string q = "\"";
+  for (char c : text) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
 
 std::string csvHeader() {
   std::string h =
       "index,timestamp,status,tx,ty,tz,qx,qy,qz,qw,corners,matches_a,matches_b,three_view,"
-      "inliers,ms_total";
+      "inliers,ms_total,reference_a,reference_b,reloc_attempted,reloc_succeeded,reloc_ms";
   for (const char* s : kStages) {
     std::string name = s;
     std::replace(name.begin(), name.end(), ' ', '_');
     std::replace(name.begin(), name.end(), '-', '_');
     h += ",ms_" + name;
   }
-  return h + "\n";
+  return h + ",message\n";
 }
 
 }  // namespace
 
 int runSixDofTrack(const SixDofTrackOptions& o) {
-  const ReferenceMap map = ReferenceMap::load(o.map);
+  const MultiReferenceMap map = MultiReferenceMap::load(o.map);  // version 2, or 1 as N = 2
   TrackerParams params = o.params.empty() ? TrackerParams{} : TrackerParams::load(o.params);
   params.mode = TrackingMode::SixDof;
   if (!o.motion.empty()) params.pose.motionModelFile = o.motion.string();
@@ -68,14 +76,26 @@ int runSixDofTrack(const SixDofTrackOptions& o) {
                         ? std::min(o.maxFrames, source->frameCount().value_or(o.maxFrames))
                         : source->frameCount().value_or(0);
   ProgressBar progress("track 6dof", static_cast<std::size_t>(std::max(total, 0)));
-  int processed = 0, tracked = 0;
-  std::vector<double> ms;
+  int processed = 0, tracked = 0, switches = 0, relocAttempts = 0, relocSucceeded = 0;
+  std::pair<int, int> lastPair{-1, -1};
+  std::vector<double> ms, relocMs;
   while (o.maxFrames < 0 || processed < o.maxFrames) {
     std::optional<Frame> frame = source->next();
     if (!frame) break;
     const TrackingResult result = tracker.process(frame->image, frame->index, frame->timestamp);
-    const PoseTrackingResult& r = tracker.last();
+    const MultiReferenceResult& multi = tracker.last();
+    const PoseTrackingResult& r = multi.tracking;
     ms.push_back(r.totalMs);
+    if (r.state == TrackingState::Tracking) {
+      const std::pair<int, int> pair{multi.referenceA, multi.referenceB};
+      if (lastPair.first >= 0 && pair != lastPair) ++switches;
+      lastPair = pair;
+    }
+    if (multi.relocalisation.attempted) {
+      ++relocAttempts;
+      relocSucceeded += multi.relocalisation.succeeded ? 1 : 0;
+      relocMs.push_back(multi.relocalisation.ms);
+    }
     csv << frame->index << ',' << frame->timestamp << ',' << toString(r.state);
     if (r.worldToCamera) {
       ++tracked;
@@ -89,13 +109,15 @@ int runSixDofTrack(const SixDofTrackOptions& o) {
       csv << ",,,,,,,";
     }
     csv << ',' << r.corners << ',' << r.matchesA << ',' << r.matchesB << ',' << r.threeView << ','
-        << r.inliers << ',' << r.totalMs;
+        << r.inliers << ',' << r.totalMs << ',' << multi.referenceA << ',' << multi.referenceB
+        << ',' << (multi.relocalisation.attempted ? 1 : 0) << ','
+        << (multi.relocalisation.succeeded ? 1 : 0) << ',' << multi.relocalisation.ms;
     for (const char* s : kStages) {
       csv << ',';
       for (const StageTiming& t : r.timings)
         if (t.stage == s) csv << t.ms;
     }
-    csv << '\n';
+    csv << ',' << quoted(r.state == TrackingState::Tracking ? "" : r.message) << '\n';
     if (recorder) {
       const cv::Mat composite =
           compositor->composite(frame->image, map.camera, result, overlay,
@@ -120,6 +142,13 @@ int runSixDofTrack(const SixDofTrackOptions& o) {
   std::nth_element(ms.begin(), ms.begin() + static_cast<long>(ms.size() / 2), ms.end());
   std::printf("6dof: %d frames, %d tracked (%.1f%%), median %.2f ms per frame\n", processed,
               tracked, 100.0 * tracked / processed, ms[ms.size() / 2]);
+  std::printf("references: %d in the map, %d pair switches\n", map.size(), switches);
+  if (relocAttempts > 0) {
+    std::nth_element(relocMs.begin(), relocMs.begin() + static_cast<long>(relocMs.size() / 2),
+                     relocMs.end());
+    std::printf("relocalisation: %d attempts, %d verified, median %.1f ms per attempt\n",
+                relocAttempts, relocSucceeded, relocMs[relocMs.size() / 2]);
+  }
   if (!o.trajectory.empty()) std::printf("trajectory: %s\n", o.trajectory.string().c_str());
   if (!o.csv.empty()) std::printf("per-frame CSV: %s\n", o.csv.string().c_str());
   if (recorder) std::printf("recording: %s\n", o.record.string().c_str());

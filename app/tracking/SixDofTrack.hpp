@@ -1,7 +1,9 @@
 #pragma once
-// `reftrack track --mode 6dof`: runs the PoseTracker over a frame source against a prepared
-// reference map and writes the TUM trajectory of T_k, the per-frame CSV and, optionally, the
-// recorded overlay. Called by TrackCommand for the 6dof mode.
+// `reftrack track --mode 6dof`: runs the MultiReferenceTracker over a frame source against a
+// prepared reference map (N references, or a two-reference version-1 map) and writes the TUM
+// trajectory of T_k, the per-frame CSV (status and reason, pose, counts, the pair of references
+// in use, the relocalisation attempt, milliseconds per stage) and, optionally, the recorded
+// overlay. Called by TrackCommand for the 6dof mode.
 #include <filesystem>
 #include <string>
 

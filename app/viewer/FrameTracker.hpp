@@ -25,6 +25,21 @@ struct TrackingDebug {
   std::vector<cv::Vec3d> epipolarLines;                      // a x + b y + c = 0
 };
 
+// 6-DOF tracking over a multi-reference map: the pair in use (-1: none) and this frame's
+// relocalisation, if one was attempted.
+struct ReferencesFrame {
+  int referenceA = -1, referenceB = -1;
+  bool relocalisationAttempted = false, relocalisationSucceeded = false;
+  double relocalisationMs = 0.0;
+  std::string relocalisationMessage;
+};
+
+// A reference image of the tracker's map, for the References panel.
+struct ReferenceImage {
+  std::string name;
+  cv::Mat image;  // BGR or grey, as stored in the map
+};
+
 struct TrackingResult {
   std::optional<RigidPose> worldToCamera;  // set when a 6-DOF pose is known for the frame
   std::optional<cv::Matx33d> H;            // frame -> reference homography, homography mode
@@ -33,6 +48,7 @@ struct TrackingResult {
   int matches = 0;
   int inliers = 0;
   TrackingDebug debug;
+  std::optional<ReferencesFrame> references;  // set by the multi-reference 6-DOF tracker
 };
 
 class FrameTracker {
@@ -42,6 +58,8 @@ class FrameTracker {
   // Takes effect from the next process() call; throws reftrack::Error for invalid parameters.
   virtual void applyParams(const TrackerParams& params) = 0;
   virtual std::string name() const = 0;
+  // The reference images of the map it tracks against (empty: no References panel).
+  virtual std::vector<ReferenceImage> referenceImages() const { return {}; }
 };
 
 }  // namespace reftrack::app

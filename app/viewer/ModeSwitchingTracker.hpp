@@ -18,6 +18,10 @@ class ModeSwitchingTracker : public FrameTracker {
   TrackingResult process(const cv::Mat& frame, int index, double timestamp) override;
   void applyParams(const TrackerParams& params) override;
   std::string name() const override { return active().name(); }
+  // The 6-DOF tracker's reference images (whichever mode is active).
+  std::vector<ReferenceImage> referenceImages() const override {
+    return sixDof_ ? sixDof_->referenceImages() : std::vector<ReferenceImage>{};
+  }
 
  private:
   FrameTracker& active() const;

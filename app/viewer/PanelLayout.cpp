@@ -1,5 +1,7 @@
 #include "app/viewer/PanelLayout.hpp"
 
+#include <algorithm>
+
 #include "engine/core/Error.hpp"
 
 namespace reftrack::app {
@@ -10,11 +12,12 @@ constexpr float kSourceHeight = 170.0f;
 constexpr float kRecordHeight = 120.0f;
 constexpr float kOverlayHeight = 300.0f;
 constexpr float kStatsHeightBesideCalibration = 200.0f;
+constexpr float kReferencesHeight = 250.0f;
 constexpr int kMinimumVideoWidth = 160;
 constexpr int kMinimumHeight = kSourceHeight + kRecordHeight + 200;
 }  // namespace
 
-PanelLayout panelLayout(cv::Size canvas, bool withCalibration) {
+PanelLayout panelLayout(cv::Size canvas, bool withCalibration, bool withReferences) {
   if (canvas.width < 2 * kColumnWidth + kMinimumVideoWidth || canvas.height < kMinimumHeight)
     throw Error("viewer canvas " + std::to_string(canvas.width) + "x" +
                 std::to_string(canvas.height) + " is too small for the panels (at least " +
@@ -34,6 +37,19 @@ PanelLayout panelLayout(cv::Size canvas, bool withCalibration) {
     l.calibration = {w - kColumnWidth, 0, kColumnWidth, h - kStatsHeightBesideCalibration};
     l.stats = {w - kColumnWidth, h - kStatsHeightBesideCalibration, kColumnWidth,
                kStatsHeightBesideCalibration};
+  }
+  if (withReferences) {
+    // Taken from the panel above Stats (Overlay, or Calibration beside it).
+    cv::Rect2f& above = withCalibration ? l.calibration : l.overlay;
+    const float height = std::min(kReferencesHeight, 0.5f * above.height + 0.5f * l.stats.height);
+    if (withCalibration) {
+      above.height -= height;
+    } else {
+      l.stats.y += height;
+      l.stats.height -= height;
+    }
+    l.references = {w - kColumnWidth, l.stats.y - height, kColumnWidth, height};
+    if (withCalibration) l.references.y = above.y + above.height;
   }
   const int column = static_cast<int>(kColumnWidth);
   l.videoArea = {column, 0, canvas.width - 2 * column, canvas.height};

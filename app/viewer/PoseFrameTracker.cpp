@@ -4,28 +4,40 @@
 
 namespace reftrack::app {
 
-PoseFrameTracker::PoseFrameTracker(ReferenceMap map, const TrackerParams& params)
+PoseFrameTracker::PoseFrameTracker(MultiReferenceMap map, const TrackerParams& params)
     : tracker_(std::move(map), params) {}
+
+PoseFrameTracker::PoseFrameTracker(const ReferenceMap& map, const TrackerParams& params)
+    : tracker_(MultiReferenceMap::fromPair(map), params) {}
 
 TrackingResult PoseFrameTracker::process(const cv::Mat& frame, int, double) {
   last_ = tracker_.process(frame);
+  const PoseTrackingResult& p = last_.tracking;
   TrackingResult r;
-  r.worldToCamera = last_.worldToCamera;
-  r.status = toString(last_.state);
-  if (last_.state == TrackingState::Lost) r.status += ": " + last_.message;
-  for (const StageTiming& t : last_.timings) r.stages.push_back({t.stage, t.ms});
-  r.matches = last_.matchesA + last_.matchesB;
-  r.inliers = last_.inliers;
-  r.debug.corners = last_.frameCorners;
+  r.worldToCamera = p.worldToCamera;
+  r.status = toString(p.state);
+  if (p.state != TrackingState::Tracking) r.status += ": " + p.message;
+  for (const StageTiming& t : p.timings) r.stages.push_back({t.stage, t.ms});
+  r.matches = p.matchesA + p.matchesB;
+  r.inliers = p.inliers;
+  r.debug.corners = p.frameCorners;
+  ReferencesFrame refs;
+  refs.referenceA = last_.referenceA;
+  refs.referenceB = last_.referenceB;
+  refs.relocalisationAttempted = last_.relocalisation.attempted;
+  refs.relocalisationSucceeded = last_.relocalisation.succeeded;
+  refs.relocalisationMs = last_.relocalisation.ms;
+  refs.relocalisationMessage = last_.relocalisation.message;
+  r.references = refs;
   // Match segments from where the corner sits in V_A to where it is now.
-  for (const auto& m : last_.inliersA) r.debug.matches.emplace_back(m.second, m.first);
-  if (last_.T_Ak) {
+  for (const auto& m : p.inliersA) r.debug.matches.emplace_back(m.second, m.first);
+  if (p.T_Ak) {
     // Epipolar lines in the frame of a few V_A matches: l = F_Ak p_A (undistorted geometry;
     // drawn on the distorted frame, which is exact only without lens distortion).
-    const Eigen::Matrix3d F = fundamentalMatrix(tracker_.map().camera.K(), *last_.T_Ak);
-    const std::size_t step = std::max<std::size_t>(1, last_.inliersA.size() / 12);
-    for (std::size_t i = 0; i < last_.inliersA.size(); i += step) {
-      const cv::Point2f& pA = last_.inliersA[i].second;
+    const Eigen::Matrix3d F = fundamentalMatrix(tracker_.map().camera.K(), *p.T_Ak);
+    const std::size_t step = std::max<std::size_t>(1, p.inliersA.size() / 12);
+    for (std::size_t i = 0; i < p.inliersA.size(); i += step) {
+      const cv::Point2f& pA = p.inliersA[i].second;
       const Eigen::Vector3d l = F * Eigen::Vector3d(pA.x, pA.y, 1.0);
       if (l.head<2>().norm() > 0) r.debug.epipolarLines.emplace_back(l.x(), l.y(), l.z());
     }
@@ -34,5 +46,11 @@ TrackingResult PoseFrameTracker::process(const cv::Mat& frame, int, double) {
 }
 
 void PoseFrameTracker::applyParams(const TrackerParams& params) { tracker_.setParams(params); }
+
+std::vector<ReferenceImage> PoseFrameTracker::referenceImages() const {
+  std::vector<ReferenceImage> images;
+  for (const ReferenceView& v : tracker_.map().views) images.push_back({v.name, v.image});
+  return images;
+}
 
 }  // namespace reftrack::app

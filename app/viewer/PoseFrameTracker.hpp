@@ -1,27 +1,31 @@
 #pragma once
-// PoseFrameTracker: the 6-DOF PoseTracker behind the viewer's FrameTracker interface — the pose
-// T_k, status, per-stage milliseconds, match/inlier counts and the debug layers (corners, inlier
-// matches to V_A drawn from the reference position, epipolar lines of the V_A matches).
+// PoseFrameTracker: the 6-DOF MultiReferenceTracker behind the viewer's FrameTracker interface —
+// the pose T_k, status (with the reason when not tracking), per-stage milliseconds, match/inlier
+// counts, the pair of references in use and the relocalisation of the frame, and the debug layers
+// (corners, inlier matches to V_A drawn from the reference position, epipolar lines of the V_A
+// matches). A two-reference map runs as a map of two.
 #include <memory>
 
 #include "app/viewer/FrameTracker.hpp"
-#include "engine/tracking/PoseTracker.hpp"
+#include "engine/tracking/MultiReferenceTracker.hpp"
 
 namespace reftrack::app {
 
 class PoseFrameTracker : public FrameTracker {
  public:
-  PoseFrameTracker(ReferenceMap map, const TrackerParams& params);
+  PoseFrameTracker(MultiReferenceMap map, const TrackerParams& params);
+  PoseFrameTracker(const ReferenceMap& map, const TrackerParams& params);
   TrackingResult process(const cv::Mat& frame, int index, double timestamp) override;
   void applyParams(const TrackerParams& params) override;
   std::string name() const override { return "6-DOF"; }
-  const PoseTracker& tracker() const { return tracker_; }
-  PoseTracker& tracker() { return tracker_; }
-  const PoseTrackingResult& last() const { return last_; }
+  std::vector<ReferenceImage> referenceImages() const override;
+  const MultiReferenceTracker& tracker() const { return tracker_; }
+  MultiReferenceTracker& tracker() { return tracker_; }
+  const MultiReferenceResult& last() const { return last_; }
 
  private:
-  PoseTracker tracker_;
-  PoseTrackingResult last_;
+  MultiReferenceTracker tracker_;
+  MultiReferenceResult last_;
 };
 
 }  // namespace reftrack::app

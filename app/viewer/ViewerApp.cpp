@@ -24,6 +24,7 @@
 #include "app/viewer/OverlayPanel.hpp"
 #include "app/viewer/PanelLayout.hpp"
 #include "app/viewer/RecordPanel.hpp"
+#include "app/viewer/ReferencesPanel.hpp"
 #include "app/viewer/SourcePanel.hpp"
 #include "app/viewer/StatsPanel.hpp"
 #include "app/viewer/TrackingPanel.hpp"
@@ -34,6 +35,7 @@
 #include "engine/core/Error.hpp"
 #include "render/RenderTarget.hpp"
 #include "render/context/GlfwWindowContext.hpp"
+#include "render/gl/Texture2D.hpp"
 
 namespace reftrack::app {
 
@@ -83,7 +85,33 @@ struct Session {
   std::function<std::unique_ptr<FrameTracker>(const PinholeCamera&, const TrackerParams&)>
       makeTracker;
   Frame first;
+  std::vector<render::Texture2D> referenceThumbnails;  // the References panel's images
 };
+
+// The References panel's thumbnails (GL textures, ~96 px wide) of the tracker's reference map;
+// the panel is shown only when the tracker has one.
+void showReferences(Session& s, ViewerState& state) {
+  ReferencesState& r = state.references;
+  r = ReferencesState{};
+  s.referenceThumbnails.clear();
+  if (!s.tracker) return;
+  for (const ReferenceImage& image : s.tracker->referenceImages()) {
+    r.names.push_back(image.name);
+    if (image.image.empty()) {
+      r.thumbnails.push_back(0);
+      continue;
+    }
+    const double scale = 96.0 / image.image.cols;
+    cv::Mat small;
+    cv::resize(image.image, small, cv::Size(), scale, scale, cv::INTER_AREA);
+    r.thumbnailSize = small.size();
+    render::Texture2D texture;
+    texture.upload(small, false);
+    r.thumbnails.push_back(texture.id());
+    s.referenceThumbnails.push_back(std::move(texture));
+  }
+  r.active = !r.names.empty();
+}
 
 Session openSession(const ViewerOptions& options, ViewerState& state) {
   Session s;
@@ -142,6 +170,7 @@ Session openSession(const ViewerOptions& options, ViewerState& state) {
                 options.input + "' delivers " + std::to_string(first->image.cols) + "x" +
                 std::to_string(first->image.rows) + " frames");
   s.first = std::move(*first);
+  showReferences(s, state);
   return s;
 }
 
@@ -203,6 +232,7 @@ struct FrameLoop {
     stats.matches = result.matches;
     stats.inliers = result.inliers;
     stats.status = result.status;
+    if (result.references) state.references.addFrame(*result.references);
     if (result.worldToCamera) stats.pose = result.worldToCamera->toVector6();
     state.stats.add(std::move(stats));
     state.lastStatus = result.status;
@@ -234,6 +264,7 @@ struct FrameLoop {
       if (tracker) {
         session.tracker = std::move(tracker);
         state.trackerName = session.tracker->name();
+        showReferences(session, state);
       }
       c.usedForTracking = true;
       c.message = tracker           ? "tracking with the calibrated camera"
@@ -338,6 +369,7 @@ void drawPanels(ViewerState& state, const PanelLayout& layout) {
   drawRecordPanel(state.record, layout.record);
   drawOverlayPanel(state.settings.overlay, state.overlayEdit, layout.overlay);
   drawStatsPanel(state.stats, layout.stats);
+  if (state.references.active) drawReferencesPanel(state.references, layout.references);
 }
 
 // Opens the Calibration panel with `--calibrate BOARD`; auto-capture as asked (always headless).
@@ -386,7 +418,8 @@ ViewerRunSummary runHeadless(const ViewerOptions& options, render::GlContext& co
   startCalibration(options, loop, frameSize);
   const cv::Size canvasSize = options.ui ? options.canvasSize : frameSize;
   const std::optional<PanelLayout> layout =
-      options.ui ? std::optional<PanelLayout>(panelLayout(canvasSize, state.calibration.active))
+      options.ui ? std::optional<PanelLayout>(
+                       panelLayout(canvasSize, state.calibration.active, state.references.active))
                  : std::nullopt;
   const render::Viewport viewport = layout
                                         ? videoViewport(frameSize, layout->videoArea, canvasSize)
@@ -544,7 +577,7 @@ ViewerRunSummary runWindow(const ViewerOptions& options, render::GlfwWindowConte
     const cv::Size fb = window.framebufferSize();
     std::optional<PanelLayout> layout;
     try {
-      layout = panelLayout(windowSize, state.calibration.active);
+      layout = panelLayout(windowSize, state.calibration.active, state.references.active);
     } catch (const Error&) {
       layout.reset();  // window too small for the columns: video only
     }

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "app/viewer/OverlayPanel.hpp"
+#include "app/viewer/ReferencesPanel.hpp"
 #include "app/viewer/StatsHistory.hpp"
 #include "app/viewer/ViewerSettings.hpp"
 #include "engine/calibration/CameraCalibrator.hpp"
@@ -71,6 +72,7 @@ struct ViewerState {
   StatsHistory stats;
   RecordState record;
   CalibrationState calibration;
+  ReferencesState references;
 };
 
 }  // namespace reftrack::app

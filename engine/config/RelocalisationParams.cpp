@@ -37,6 +37,8 @@ void RelocalisationParams::check() const {
   requireFiniteInRange("relocalisation.min_inlier_ratio", minInlierRatio, 0.0, 1.0);
   requireIntInRange("relocalisation.attempt_every_frames", attemptEveryFrames, 1, 10000);
   requireIntInRange("relocalisation.min_inlier_cells", minInlierCells, 1, 16);
+  requireFiniteInRange("relocalisation.max_rotation_sigma_deg", maxRotationSigmaDeg, 0.0, 180.0);
+  requireFiniteInRange("relocalisation.max_position_sigma_ratio", maxPositionSigmaRatio, 0.0, 10.0);
   requireFiniteInRange("relocalisation.triangulation_px", triangulationPx, 0.05, 100.0);
   requireFiniteInRange("relocalisation.min_parallax_deg", minParallaxDeg, 0.0, 90.0);
 }
@@ -47,7 +49,8 @@ void RelocalisationParams::write(cv::FileStorage& fs) const {
      << "ratio" << ratio << "references_to_match" << referencesToMatch << "ransac_iterations"
      << ransacIterations << "reprojection_px" << reprojectionPx << "min_inliers" << minInliers
      << "min_inlier_ratio" << minInlierRatio << "attempt_every_frames" << attemptEveryFrames
-     << "min_inlier_cells" << minInlierCells << "triangulation_px" << triangulationPx
+     << "min_inlier_cells" << minInlierCells << "max_rotation_sigma_deg" << maxRotationSigmaDeg
+     << "max_position_sigma_ratio" << maxPositionSigmaRatio << "triangulation_px" << triangulationPx
      << "min_parallax_deg" << minParallaxDeg;
 }
 
@@ -65,6 +68,8 @@ void RelocalisationParams::read(const cv::FileNode& node) {
   readConfigValue(node, s, "min_inlier_ratio", minInlierRatio);
   readConfigValue(node, s, "attempt_every_frames", attemptEveryFrames);
   readConfigValue(node, s, "min_inlier_cells", minInlierCells);
+  readConfigValue(node, s, "max_rotation_sigma_deg", maxRotationSigmaDeg);
+  readConfigValue(node, s, "max_position_sigma_ratio", maxPositionSigmaRatio);
   readConfigValue(node, s, "triangulation_px", triangulationPx);
   readConfigValue(node, s, "min_parallax_deg", minParallaxDeg);
   check();

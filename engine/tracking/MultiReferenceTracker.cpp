@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "engine/core/Error.hpp"
+#include "engine/relocalisation/Relocaliser.hpp"
 #include "engine/tracking/ReferenceSelector.hpp"
 
 namespace reftrack {
@@ -28,6 +29,11 @@ struct FrameAttempts {
     earlierMessages += (earlierMessages.empty() ? "" : "; ") + what + ": " + r.message;
   }
 };
+
+MultiReferenceMap checked(MultiReferenceMap map) {
+  map.check();
+  return map;
+}
 
 }  // namespace
 
@@ -55,15 +61,29 @@ struct MultiReferenceTracker::Impl {
   std::vector<ReferencePair> initialisationPairs;  // the paper's start near a reference
   std::size_t nextInitialisationPair = 0;
   int relocalisationAttempts = 0;
+  // Built when relocalisation is enabled and the map has a keypoint layer; else the paper's start
+  // near a reference is the only way in.
+  std::unique_ptr<Relocaliser> relocaliser;
+  int framesSinceRelocalisation = 0;  // lost frames since the last attempt
 
   Impl(MultiReferenceMap m, const TrackerParams& p, PoseTrackerLimits l)
-      : map(std::move(m)), params(p), limits(l), selector(map, p.references) {
+      : map(checked(std::move(m))), params(p), limits(l), selector(map, p.references) {
     params.check();
     limits.check();
     if (map.size() < 2)
       throw Error("MultiReferenceTracker: the map has " + std::to_string(map.size()) +
                   " references, at least 2 are needed");
     buildInitialisationPairs();
+    buildRelocaliser();
+  }
+
+  void buildRelocaliser() {
+    relocaliser.reset();
+    const bool layer = std::any_of(map.views.begin(), map.views.end(),
+                                   [](const ReferenceView& v) { return !v.keypoints.empty(); });
+    if (params.relocalisation.enabled && layer)
+      relocaliser = std::make_unique<Relocaliser>(map, params.relocalisation);
+    framesSinceRelocalisation = params.relocalisation.attemptEveryFrames;  // due at once
   }
 
   // One pair per reference: its candidate partner sharing the most map points, so a start near
@@ -118,6 +138,7 @@ struct MultiReferenceTracker::Impl {
     state = TrackingState::Tracking;
     lastPose = r.worldToCamera;
     framesSinceTracked = 0;
+    framesSinceRelocalisation = params.relocalisation.attemptEveryFrames;  // due at the next loss
   }
 
   MultiReferenceResult process(const cv::Mat& frame);
@@ -190,13 +211,14 @@ MultiReferenceResult MultiReferenceTracker::Impl::track(const cv::Mat& frame,
 }
 
 // Not tracking: (1) shortly after a loss, the last pose seeds the pair in use (a black or blurred
-// frame: the camera has not gone far); (2) the paper's start near a reference, one
+// frame: the camera has not gone far); (2) every relocalisation.attempt_every_frames-th frame,
+// the Relocaliser's candidate seeds the pair best placed for it, which verifies it on the same
+// frame; (3) on frames without an attempt, the paper's start near a reference, one
 // initialisation pair per frame in turn, the pair last in use first.
 PoseTrackingResult MultiReferenceTracker::Impl::recover(const cv::Mat& frame,
                                                         FrameAttempts& attempts,
                                                         ReferencePair& used,
                                                         RelocalisationReport& relocalisation) {
-  (void)relocalisation;
   if (lastPose && active.valid() && framesSinceTracked <= params.references.reseedFrames) {
     PoseTracker& t = trackerFor(active);
     t.seed(*lastPose);
@@ -208,6 +230,42 @@ PoseTrackingResult MultiReferenceTracker::Impl::recover(const cv::Mat& frame,
     }
     attempts.failed("re-seed", r);
     t.reset();
+  }
+  if (relocaliser && ++framesSinceRelocalisation >= params.relocalisation.attemptEveryFrames) {
+    framesSinceRelocalisation = 0;
+    ++relocalisationAttempts;
+    const Clock::time_point start = Clock::now();
+    const RelocalisationAttempt attempt = relocaliser->locate(frame);
+    relocalisation.attempted = true;
+    relocalisation.message = attempt.message;
+    if (attempt.candidate) {
+      relocalisation.inliers = attempt.candidate->inliers;
+      const ReferencePair pair = selector.best(attempt.candidate->worldToCamera);
+      PoseTracker& t = trackerFor(pair);
+      t.seed(attempt.candidate->worldToCamera);
+      PoseTrackingResult r = t.process(frame);
+      used = pair;
+      relocalisation.ms = msSince(start);
+      if (r.state == TrackingState::Tracking) {
+        relocalisation.succeeded = true;
+        relocalisation.message +=
+            "; verified by references " + std::to_string(pair.a) + "+" + std::to_string(pair.b);
+        r.message = "relocalised";
+        r.timings.insert(r.timings.begin(), {"relocalise", attempt.ms});
+        return r;
+      }
+      relocalisation.message += "; not verified: " + r.message;
+      t.reset();
+      r.timings.insert(r.timings.begin(), {"relocalise", attempt.ms});
+      r.message = "relocalisation not verified: " + r.message;
+      return r;
+    }
+    relocalisation.ms = msSince(start);
+    PoseTrackingResult r;
+    r.state = lastPose ? TrackingState::Lost : TrackingState::Initialising;
+    r.message = "relocalisation: " + attempt.message;
+    r.timings.push_back({"relocalise", attempt.ms});
+    return r;
   }
   // The pair last in use on even attempts, the others in turn on odd ones (only the turn moves
   // on with the frames: each pair's tracker also cycles through its scale hypotheses).
@@ -244,6 +302,7 @@ void MultiReferenceTracker::setParams(const TrackerParams& params) {
     m.selector.setCurrent(keep);
   m.params = params;
   m.buildInitialisationPairs();
+  m.buildRelocaliser();
   for (Impl::CachedTracker& c : m.cache) c.tracker->setParams(params);
   while (static_cast<int>(m.cache.size()) > params.references.cachedTrackers) {
     auto victim =
@@ -275,6 +334,7 @@ void MultiReferenceTracker::reset() {
   m.state = TrackingState::Initialising;
   m.lastPose.reset();
   m.framesSinceTracked = 0;
+  m.framesSinceRelocalisation = m.params.relocalisation.attemptEveryFrames;
 }
 
 const MultiReferenceMap& MultiReferenceTracker::map() const { return impl_->map; }

@@ -1,11 +1,15 @@
 #pragma once
 // MultiReferenceTracker (issue 13): the 6-DOF tracker over a map of N references. Per frame it
-// runs the paper's two-reference PoseTracker on the pair of references best placed for the
-// predicted pose (ReferenceSelector: position and viewing direction, with hysteresis), so the
-// cost of a tracked frame does not grow with N; switching pairs hands the current pose over to
-// the new pair's tracker (PoseTracker::seed). On the first frame and whenever tracking is lost,
-// the Relocaliser proposes a pose from anywhere in the mapped volume, which the pair tracker
-// refines and verifies with the warped correlation on the same frame before it is reported.
+// runs the paper's two-reference PoseTracker on the pair of references best placed for the last
+// pose (ReferenceSelector: position and viewing direction, with hysteresis), so the cost of a
+// tracked frame does not grow with N; switching pairs hands the current pose over to the new
+// pair's tracker (PoseTracker::seed), and when that fails the pair in use goes on. Pair trackers
+// are made on first use and references.cached_trackers of them are kept. Not tracking: within
+// references.reseed_frames of a loss the last pose seeds the pair in use; every
+// relocalisation.attempt_every_frames-th frame the Relocaliser (when enabled and the map has a
+// keypoint layer) proposes a pose from anywhere in the mapped volume, which the pair best placed
+// for it refines and verifies with the warped correlation on the same frame before it is
+// reported; other frames try the paper's start near a reference, one pair per frame in turn.
 #include <memory>
 #include <utility>
 
@@ -26,8 +30,8 @@ struct RelocalisationReport {
 };
 
 struct MultiReferenceResult {
-  PoseTrackingResult tracking;   // T_Ak etc. relative to reference `referenceA`
-  int referenceA = -1, referenceB = -1;  // the pair in use on this frame (-1: none)
+  PoseTrackingResult tracking;           // T_Ak etc. relative to reference `referenceA`
+  int referenceA = -1, referenceB = -1;  // the pair whose tracker gave `tracking` (-1: none)
   RelocalisationReport relocalisation;
 };
 

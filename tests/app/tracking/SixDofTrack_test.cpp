@@ -51,6 +51,20 @@ TEST(SixDofTrack, TracksAFolderAndWritesTrajectoryCsvAndVideo) {
   std::filesystem::create_directories(dir / "out");
   EXPECT_EQ(runSixDofTrack(o), 12);
   EXPECT_EQ(lineCount(o.csv), 13);  // header + one row per frame
+  {
+    // The pair in use and the relocalisation columns: the two-reference map runs as the pair
+    // (0, 1); its frames start near V_A, so no relocalisation is needed.
+    std::ifstream in(o.csv);
+    std::string header, row;
+    std::getline(in, header);
+    EXPECT_NE(header.find(",reference_a,reference_b,reloc_attempted,reloc_succeeded,reloc_ms"),
+              std::string::npos)
+        << header;
+    EXPECT_EQ(header.substr(header.size() - 8), ",message");
+    std::getline(in, row);
+    EXPECT_NE(row.find(",tracking,"), std::string::npos) << row;
+    EXPECT_NE(row.find(",0,1,0,0,0,"), std::string::npos) << row;
+  }
   const TumTrajectory estimate = TumTrajectory::load(o.trajectory);
   const TumTrajectory truth = TumTrajectory::load(dir / "seq/groundtruth.txt");
   ASSERT_EQ(estimate.poses.size(), 12u);

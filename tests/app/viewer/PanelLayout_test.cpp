@@ -46,3 +46,19 @@ TEST(PanelLayout, CalibrationTakesTheRightColumnAboveStats) {
   EXPECT_EQ(l.overlay.y + l.overlay.height, l.record.y);
   EXPECT_EQ(l.videoArea, plain.videoArea);
 }
+
+TEST(PanelLayout, ReferencesSitAboveStatsInTheRightColumn) {
+  const PanelLayout plain = panelLayout({1280, 720});
+  EXPECT_TRUE(plain.references.empty());
+  for (const bool calibration : {false, true}) {
+    const PanelLayout l = panelLayout({1280, 720}, calibration, true);
+    const cv::Rect2f& above = calibration ? l.calibration : l.overlay;
+    EXPECT_EQ(l.references.x, 1280.0f - l.references.width) << calibration;
+    EXPECT_EQ(l.references.y, above.y + above.height) << calibration;
+    EXPECT_EQ(l.stats.y, l.references.y + l.references.height) << calibration;
+    EXPECT_EQ(l.stats.y + l.stats.height, 720.0f) << calibration;
+    EXPECT_GT(l.stats.height, 100.0f) << calibration;
+    EXPECT_GT(above.height, 100.0f) << calibration;
+    EXPECT_EQ(l.videoArea, plain.videoArea);
+  }
+}

@@ -182,3 +182,57 @@ TEST(ViewerApp, HeadlessCalibrationFailureIsAClearError) {
   o.calibrateBoard = "chessboard:nonsense";
   EXPECT_THROW(runViewer(o), Error);
 }
+
+namespace {
+
+// A tracker over a "map" of two plain-coloured references (red and blue), reporting pair (0, 1)
+// and a relocalisation attempt on every frame: what the References panel needs.
+class TwoColourReferencesTracker : public FrameTracker {
+ public:
+  TrackingResult process(const cv::Mat&, int, double) override {
+    TrackingResult r;
+    r.status = "tracking";
+    ReferencesFrame f;
+    f.referenceA = 0;
+    f.referenceB = 1;
+    f.relocalisationAttempted = true;
+    f.relocalisationMs = 12.5;
+    r.references = f;
+    return r;
+  }
+  void applyParams(const TrackerParams&) override {}
+  std::string name() const override { return "two colours"; }
+  std::vector<ReferenceImage> referenceImages() const override {
+    return {{"red.png", cv::Mat(120, 160, CV_8UC3, cv::Scalar(0, 0, 255))},
+            {"blue.png", cv::Mat(120, 160, CV_8UC3, cv::Scalar(255, 0, 0))}};
+  }
+};
+
+int pixelsOf(const cv::Mat& bgr, const cv::Vec3b& colour) {
+  int n = 0;
+  for (int y = 0; y < bgr.rows; ++y)
+    for (int x = 0; x < bgr.cols; ++x) n += bgr.at<cv::Vec3b>(y, x) == colour;
+  return n;
+}
+
+}  // namespace
+
+// With a tracker over a reference map, the headless --ui canvas shows the References panel in the
+// right column with a thumbnail (GL texture) of each reference: 96 x 72 px of each colour.
+TEST(ViewerApp, TheReferencesPanelShowsAThumbnailOfEveryReference) {
+  const fs::path dir = test::freshTempDir("ViewerApp_References");
+  ViewerOptions o = simOptions(2);
+  o.ui = true;
+  o.screenshot = dir / "ui.png";
+  o.makeTracker = [](const PinholeCamera&, const TrackerParams&) {
+    return std::unique_ptr<FrameTracker>(std::make_unique<TwoColourReferencesTracker>());
+  };
+  runViewer(o);
+  const cv::Mat shot = cv::imread(o.screenshot.string());
+  ASSERT_EQ(shot.size(), o.canvasSize);
+  const cv::Mat rightColumn = shot(cv::Rect(shot.cols - 330, 0, 330, shot.rows));
+  // The thumbnails' inner pixels (the frame drawn over their border aside).
+  EXPECT_GT(pixelsOf(rightColumn, {0, 0, 255}), 90 * 66);
+  EXPECT_GT(pixelsOf(rightColumn, {255, 0, 0}), 90 * 66);
+  EXPECT_EQ(pixelsOf(shot(cv::Rect(0, 0, 330, shot.rows)), {0, 0, 255}), 0);
+}

@@ -16,13 +16,15 @@ TEST(RelocalisationParams, RoundTrip) {
   in.featuresPerFrame = 700;
   in.featuresPerReference = 1500;
   in.ratio = 0.7;
-  in.referencesToMatch = 2;
+  in.referencesToMatch = 5;
   in.ransacIterations = 150;
   in.reprojectionPx = 1.5;
   in.minInliers = 25;
   in.minInlierRatio = 0.3;
   in.attemptEveryFrames = 3;
   in.minInlierCells = 5;
+  in.maxRotationSigmaDeg = 0.7;
+  in.maxPositionSigmaRatio = 0.05;
   in.triangulationPx = 0.8;
   in.minParallaxDeg = 2.0;
   RelocalisationParams out;
@@ -32,13 +34,15 @@ TEST(RelocalisationParams, RoundTrip) {
   EXPECT_EQ(out.featuresPerFrame, 700);
   EXPECT_EQ(out.featuresPerReference, 1500);
   EXPECT_DOUBLE_EQ(out.ratio, 0.7);
-  EXPECT_EQ(out.referencesToMatch, 2);
+  EXPECT_EQ(out.referencesToMatch, 5);
   EXPECT_EQ(out.ransacIterations, 150);
   EXPECT_DOUBLE_EQ(out.reprojectionPx, 1.5);
   EXPECT_EQ(out.minInliers, 25);
   EXPECT_DOUBLE_EQ(out.minInlierRatio, 0.3);
   EXPECT_EQ(out.attemptEveryFrames, 3);
   EXPECT_EQ(out.minInlierCells, 5);
+  EXPECT_DOUBLE_EQ(out.maxRotationSigmaDeg, 0.7);
+  EXPECT_DOUBLE_EQ(out.maxPositionSigmaRatio, 0.05);
   EXPECT_DOUBLE_EQ(out.triangulationPx, 0.8);
   EXPECT_DOUBLE_EQ(out.minParallaxDeg, 2.0);
 }
@@ -76,6 +80,8 @@ TEST(RelocalisationParams, EveryBadFieldIsNamed) {
       {"relocalisation.min_inlier_ratio", [](P& p) { p.minInlierRatio = -0.1; }},
       {"relocalisation.attempt_every_frames", [](P& p) { p.attemptEveryFrames = 0; }},
       {"relocalisation.min_inlier_cells", [](P& p) { p.minInlierCells = 17; }},
+      {"relocalisation.max_rotation_sigma_deg", [](P& p) { p.maxRotationSigmaDeg = -1.0; }},
+      {"relocalisation.max_position_sigma_ratio", [&](P& p) { p.maxPositionSigmaRatio = nan; }},
       {"relocalisation.triangulation_px", [&](P& p) { p.triangulationPx = nan; }},
       {"relocalisation.min_parallax_deg", [](P& p) { p.minParallaxDeg = -1.0; }},
   };

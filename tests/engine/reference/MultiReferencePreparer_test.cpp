@@ -86,7 +86,7 @@ TEST(MultiReferencePreparer, FourKnownPosesGiveMultiViewPointsOnThePlane) {
   // corner meets the plane. Exact poses, so only corner and peak localisation remain: 0.1-0.2 px
   // at f = 600 px and ~1 m is 0.2-0.3 mm across the ray; along it the error grows by the inverse
   // parallax (15-31 degrees: x2-4), so 1-2 mm; measured 2.0 mm RMS for two-view points and
-  // 1.6 mm for points seen by 3+ references. A wrong match surviving every gate lands centimetres
+  // 1.3 mm for points seen by 3+ references. A wrong match surviving every gate lands centimetres
   // off (measured: 10 of 887, 1.1%, all two-view points: a 3+-view track drops a corner that
   // disagrees); up to 2% may exceed 2 cm, the rest is held to 3 mm RMS.
   double sq2 = 0.0, sq3 = 0.0;
