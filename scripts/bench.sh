@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Speed and accuracy benchmarks (single thread), each against its baseline measured in the same
-# run: homography mode vs ORB + findHomography, 6-DOF vs ORB + solvePnPRansac + KalmanFilter.
-# Usage: bench.sh [frames]   (default 300 frames per 6-DOF sequence)
+# run: homography mode vs ORB + findHomography, 6-DOF vs ORB + solvePnPRansac + KalmanFilter;
+# issue 13: the walkaround with N references (and its two-reference coverage), cold start,
+# kidnapped camera and the cost of N references vs two (ORB + solvePnPRansac cold start beside).
+# Usage: bench.sh [frames]   (default 300 frames per 6-DOF sequence; the walkaround runs 1000)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${REFTRACK_BUILD_DIR:-$root/build}"
@@ -17,3 +19,7 @@ for size in 320x240 640x480; do
 done
 "$build/app/reftrack" experiment-6dof --preset static --frames "$frames" --no-baseline \
   --out "$out/6dof-static"
+"$build/app/reftrack" experiment-6dof --preset walkaround --frames 1000 --references 6 \
+  --no-baseline --out "$out/6dof-walkaround"
+"$build/app/reftrack" experiment-relocalisation --references 8 --cold-starts 200 --kidnaps 100 \
+  --out-csv "$out/relocalisation.csv"

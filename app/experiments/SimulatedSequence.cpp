@@ -9,11 +9,30 @@
 #include "app/simulator/SceneSimulator.hpp"
 #include "engine/core/Error.hpp"
 #include "engine/reference/MultiReferenceMap.hpp"
+#include "engine/reference/MultiReferencePreparer.hpp"
+#include "engine/relocalisation/ReferenceKeypointBuilder.hpp"
 
 namespace reftrack::app {
 
+MultiReferenceMap prepareSimulatedReferences(SceneSimulator& sim, int count,
+                                             const ReferencePreparerParams& params,
+                                             const RelocalisationParams& keypoints) {
+  const int available = static_cast<int>(sim.referencePoses().size());
+  if (count < 2 || count > available)
+    throw Error("simulated references: asked for " + std::to_string(count) + " of " +
+                std::to_string(available) + " reference views");
+  std::vector<ReferenceImage> images;
+  for (int i = 0; i < count; ++i)
+    images.push_back({sim.renderReferenceView(i), "simulated reference " + std::to_string(i)});
+  MultiReferenceMap map =
+      MultiReferencePreparer(sim.camera(), params).prepare(images, sim.marker()).map;
+  buildReferenceKeypoints(map, keypoints);
+  return map;
+}
+
 SimulatedSequence simulateSequence(const SimulationOptions& options,
-                                   const ReferencePreparerParams& preparation) {
+                                   const ReferencePreparerParams& preparation, SequenceMaps maps,
+                                   const RelocalisationParams& keypoints) {
   options.check();
   SimulatedSequence s;
   s.options = options;
@@ -22,6 +41,9 @@ SimulatedSequence simulateSequence(const SimulationOptions& options,
   const ReferenceImage a{sim.renderReference('A'), "simulated reference A"};
   const ReferenceImage b{sim.renderReference('B'), "simulated reference B"};
   s.preparation = ReferencePreparer(s.camera, preparation).prepare(a, b, sim.marker());
+  if (maps == SequenceMaps::AllReferences)
+    s.references =
+        prepareSimulatedReferences(sim, options.referenceCount(), preparation, keypoints);
   ProgressBar progress("render " + options.preset, static_cast<std::size_t>(options.frames));
   for (int k = 0; k < options.frames; ++k) {
     cv::Mat gray;
@@ -88,12 +110,36 @@ SimulatedSequence load(const SimulationOptions& options, const fs::path& dir) {
 }  // namespace
 
 SimulatedSequence cachedSimulatedSequence(const SimulationOptions& options,
-                                          const std::filesystem::path& cacheDir) {
+                                          const std::filesystem::path& cacheDir, SequenceMaps maps,
+                                          const RelocalisationParams& keypoints) {
   options.check();
   const fs::path dir = cacheDir / cacheKey(options);
-  if (fs::exists(dir / "groundtruth.txt")) return load(options, dir);
-  SimulatedSequence s = simulateSequence(options);
+  // The N-reference map does not change the frames: one subfolder per reference count.
+  const fs::path referencesDir = dir / ("references_" + std::to_string(options.referenceCount()));
+  if (fs::exists(dir / "groundtruth.txt")) {
+    SimulatedSequence s = load(options, dir);
+    if (maps == SequenceMaps::AllReferences) {
+      if (fs::exists(referencesDir / MultiReferenceMap::kFileName)) {
+        s.references = MultiReferenceMap::load(referencesDir);
+        // Stored without a keypoint layer, or with another kind: built now and stored again.
+        bool layered = s.references->keypointKind == keypoints.keypoints;
+        for (const ReferenceView& v : s.references->views)
+          layered = layered && !v.keypoints.empty();
+        if (!layered) {
+          buildReferenceKeypoints(*s.references, keypoints);
+          s.references->save(referencesDir);
+        }
+      } else {
+        SceneSimulator sim(options);
+        s.references = prepareSimulatedReferences(sim, options.referenceCount(), {}, keypoints);
+        s.references->save(referencesDir);
+      }
+    }
+    return s;
+  }
+  SimulatedSequence s = simulateSequence(options, {}, maps, keypoints);
   store(s, dir);
+  if (s.references) s.references->save(referencesDir);
   return s;
 }
 

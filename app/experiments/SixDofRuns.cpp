@@ -6,6 +6,8 @@
 
 #include "app/baselines/OrbPnpKalmanTracker.hpp"
 #include "app/cli/ProgressBar.hpp"
+#include "engine/core/Error.hpp"
+#include "engine/tracking/MultiReferenceTracker.hpp"
 #include "engine/tracking/PoseTracker.hpp"
 
 namespace reftrack::app {
@@ -83,6 +85,36 @@ TrackerRun runPoseTracker(const SimulatedSequence& s, const TrackerParams& param
       ++run.lostFrames;
       run.lostReasons.push_back("frame " + std::to_string(k) + ": " + r.message);
       run.motion.push_back(std::nullopt);
+    }
+    progress.advance();
+  }
+  progress.finish();
+  evaluate(s, run, cubeSide);
+  return run;
+}
+
+TrackerRun runMultiReferenceTracker(const SimulatedSequence& s, const TrackerParams& params,
+                                    const std::string& name,
+                                    const std::optional<ArMotionModel>& motion, double cubeSide) {
+  if (!s.references) throw Error("the simulated sequence was prepared without its N-reference map");
+  TrackerRun run;
+  run.name = name;
+  MultiReferenceTracker tracker(*s.references, params);
+  if (motion) tracker.setMotionModel(*motion);
+  ProgressBar progress("track " + name, s.frames.size());
+  for (std::size_t k = 0; k < s.frames.size(); ++k) {
+    const Clock::time_point t0 = Clock::now();
+    const MultiReferenceResult m = tracker.process(s.frames[k]);
+    run.frameMs.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+    const PoseTrackingResult& r = m.tracking;
+    for (const StageTiming& st : r.timings) run.stageMs[st.stage].push_back(st.ms);
+    run.motion.push_back(std::nullopt);  // x_Ak is relative to whichever pair is in use
+    if (r.worldToCamera) {
+      run.estimate.poses.push_back({s.groundTruth.poses[k].timestamp, *r.worldToCamera});
+      ++run.pairUse[std::to_string(m.referenceA) + "-" + std::to_string(m.referenceB)];
+    } else {
+      ++run.lostFrames;
+      run.lostReasons.push_back("frame " + std::to_string(k) + ": " + r.message);
     }
     progress.advance();
   }

@@ -23,13 +23,20 @@ struct TrackerRun {
   std::vector<std::string> lostReasons;  // "frame k: why", PoseTracker runs
   TrajectoryEvaluation evaluation;
   double firstHundredMeanPx = 0, lastHundredMeanPx = 0;  // drift check: mean cube error
-  double staticJitterPx = 0;  // SD over time of the cube vertices' image positions
+  double staticJitterPx = 0;           // SD over time of the cube vertices' image positions
+  std::map<std::string, int> pairUse;  // MultiReferenceTracker runs: tracked frames per "a-b"
 };
 
 // `motion` replaces the AR model and Q of `params` when given (e.g. fitted by fit-motion).
 TrackerRun runPoseTracker(const SimulatedSequence& s, const TrackerParams& params,
                           const std::string& name, const std::optional<ArMotionModel>& motion = {},
                           double cubeSide = 0.1);
+// The MultiReferenceTracker over s.references (every reference view of the sequence); throws
+// reftrack::Error when the sequence was prepared without them. `motion` as above.
+TrackerRun runMultiReferenceTracker(const SimulatedSequence& s, const TrackerParams& params,
+                                    const std::string& name,
+                                    const std::optional<ArMotionModel>& motion = {},
+                                    double cubeSide = 0.1);
 TrackerRun runOrbBaseline(const SimulatedSequence& s, double cubeSide = 0.1);
 
 double median(std::vector<double> v);

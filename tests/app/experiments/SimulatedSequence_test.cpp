@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "TestPaths.hpp"
+#include "app/simulator/SceneSimulator.hpp"
 #include "engine/core/Error.hpp"
 #include "render/context/GlContext.hpp"
 
@@ -44,6 +45,41 @@ TEST(SimulatedSequence, CacheReturnsTheSameSequenceAndRefusesABrokenFolder) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("000002.png"), std::string::npos) << e.what();
   }
+}
+
+// The walkaround's N-reference map: every reference view, posed by the marker to within the
+// marker's accuracy, points shared by neighbouring views; the cache keeps it (one folder per
+// reference count) and a two-reference request does not prepare it.
+TEST(SimulatedSequence, PreparesAndCachesTheMapOfAllReferences) {
+  const auto gl = render::createHeadlessContext();
+  const std::filesystem::path cache = test::freshTempDir("simulated_sequence_references");
+  SimulationOptions o;
+  o.preset = "walkaround";
+  o.frames = 2;
+  o.references = 4;
+  const SimulatedSequence made = cachedSimulatedSequence(o, cache, SequenceMaps::AllReferences);
+  ASSERT_TRUE(made.references);
+  ASSERT_EQ(made.references->size(), 4);
+  SceneSimulator sim(o);
+  for (int i = 0; i < 4; ++i) {
+    // Marker poses of the simulator's references: within 1 mm and 0.1 deg (SceneSimulator test
+    // measures 0.07 mm and 0.03 deg at worst).
+    const RigidPose& truth = sim.referencePoses()[static_cast<std::size_t>(i)];
+    EXPECT_LT(RigidPose::translationDistance(made.references->views[i].T, truth), 0.001) << i;
+    EXPECT_LT(RigidPose::rotationDistance(made.references->views[i].T, truth), 0.1 * M_PI / 180)
+        << i;
+  }
+  // A and B (0.25 m apart) and A and view 2 (30 deg apart) share points.
+  EXPECT_GT(made.references->sharedPoints(0, 1), 100);
+  EXPECT_GT(made.references->sharedPoints(0, 2), 30);
+  std::cout << "map of 4: " << made.references->points.size() << " points, shared 0-1 "
+            << made.references->sharedPoints(0, 1) << ", 0-2 "
+            << made.references->sharedPoints(0, 2) << ", 1-3 "
+            << made.references->sharedPoints(1, 3) << "\n";
+  const SimulatedSequence loaded = cachedSimulatedSequence(o, cache, SequenceMaps::AllReferences);
+  ASSERT_TRUE(loaded.references);
+  EXPECT_EQ(loaded.references->points.size(), made.references->points.size());
+  EXPECT_FALSE(cachedSimulatedSequence(o, cache).references);
 }
 
 }  // namespace

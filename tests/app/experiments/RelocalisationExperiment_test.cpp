@@ -1,0 +1,70 @@
+#include "app/experiments/RelocalisationExperiment.hpp"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+
+#include "engine/core/Error.hpp"
+#include "engine/evaluation/TrajectoryEvaluator.hpp"
+
+using namespace reftrack;
+using namespace reftrack::app;
+
+TEST(RelocalisationExperiment, PoseCubeErrorIsTheMeanVertexDisplacement) {
+  const PinholeCamera camera = PinholeCamera::fromFieldOfView({640, 480}, 60.0);
+  const RigidPose truth(
+      Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 0.2, 0).normalized()).toRotationMatrix(),
+      Eigen::Vector3d(0.05, -0.1, 0.9));
+  EXPECT_NEAR(poseCubeErrorPx(camera, truth, truth), 0.0, 1e-12);
+  // 2 mm sideways in the camera frame: every vertex moves by fx * 0.002 / z.
+  const RigidPose moved(truth.rotation(), truth.translation() + Eigen::Vector3d(0.002, 0, 0));
+  double expected = 0.0;
+  for (const Eigen::Vector3d& X : cubeVertices(0.1))
+    expected += camera.fx() * 0.002 / (truth * X).z();
+  expected /= 8.0;
+  EXPECT_NEAR(poseCubeErrorPx(camera, truth, moved), expected, 1e-9);
+  // A pose that puts the cube behind the camera is as wrong as it gets.
+  const RigidPose behind(truth.rotation(), -truth.translation() - Eigen::Vector3d(0, 0, 2));
+  EXPECT_GT(poseCubeErrorPx(camera, truth, behind), 1e6);
+}
+
+TEST(RelocalisationExperiment, TrackedFrameTimingKeepsTrackedFramesOfEachTracker) {
+  std::vector<cv::Mat> frames(7, cv::Mat::zeros(4, 4, CV_8UC1));
+  int firstCalls = 0;
+  std::vector<int> order;
+  const FrameTracker everyFrame = [&](const cv::Mat&) -> std::optional<RigidPose> {
+    ++firstCalls;
+    order.push_back(1);
+    return RigidPose();
+  };
+  int secondCalls = 0;
+  const FrameTracker everyOther = [&](const cv::Mat&) -> std::optional<RigidPose> {
+    order.push_back(2);
+    if (secondCalls++ % 2 == 0) return RigidPose();
+    return std::nullopt;
+  };
+  const TrackedFrameTiming t = compareTrackedFrameMs(frames, everyFrame, everyOther);
+  EXPECT_EQ(firstCalls, 7);
+  EXPECT_EQ(secondCalls, 7);
+  EXPECT_EQ(t.msFirst.size(), 7u);
+  EXPECT_EQ(t.msSecond.size(), 4u);  // frames 0, 2, 4, 6
+  for (double ms : t.msFirst) EXPECT_GE(ms, 0.0);
+  // They take turns at going first.
+  ASSERT_EQ(order.size(), 14u);
+  EXPECT_EQ(order[0], 1);
+  EXPECT_EQ(order[2], 2);
+  EXPECT_EQ(order[4], 1);
+}
+
+TEST(RelocalisationExperiment, OptionsCheckNamesTheBadField) {
+  RelocalisationExperimentOptions o;
+  EXPECT_NO_THROW(o.check());
+  o.coldStarts = -1;
+  EXPECT_THROW(o.check(), Error);
+  o = {};
+  o.wrongPx = 1.0;  // below successPx
+  EXPECT_THROW(o.check(), Error);
+  o = {};
+  o.views.maxAngleDeg = 120;
+  EXPECT_THROW(o.check(), Error);
+}
