@@ -79,7 +79,10 @@ void printSummary(const MultiPreparation& p, const std::vector<std::string>& nam
   const MultiPreparationReport& r = p.report;
   std::printf("reference poses: %s\n", p.map.poseSource.c_str());
   for (std::size_t v = 0; v < names.size(); ++v) {
-    std::printf("reference %zu (%s): %d corners", v, names[v].c_str(), r.corners[v]);
+    const ReferenceKeypoints& k = p.map.views[v].keypoints;
+    std::printf("reference %zu (%s): %d corners, %zu %s keypoints (%d with a 3D point)", v,
+                names[v].c_str(), r.corners[v], k.keypoints.size(), p.map.keypointKind.c_str(),
+                k.pointCount());
     if (r.markerRmsPx[v])
       std::printf(", marker corner reprojection RMS %.3f px", *r.markerRmsPx[v]);
     std::printf("\n");

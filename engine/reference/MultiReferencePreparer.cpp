@@ -11,6 +11,7 @@
 #include "engine/core/Error.hpp"
 #include "engine/features/CornerDetector.hpp"
 #include "engine/reference/MultiViewTriangulator.hpp"
+#include "engine/relocalisation/ReferenceKeypointBuilder.hpp"
 
 namespace reftrack {
 
@@ -313,6 +314,7 @@ MultiPreparation MultiReferencePreparer::build(const std::vector<ReferenceImage>
     ss << " do the images overlap, and are the poses (" << poseSource << ") right?";
     throw Error(ss.str());
   }
+  if (params_.relocalisation.enabled) buildReferenceKeypoints(map, params_.relocalisation);
   map.check();
   out.report = std::move(report);
   return out;

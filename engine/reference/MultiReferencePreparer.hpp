@@ -10,7 +10,9 @@
 // seen by 3+ is re-triangulated from all its measurements (its first reference's corner and the
 // correlation peaks the pairs found for it elsewhere; linear DLT, then Gauss-Newton on the
 // reprojection errors with Ceres) and loses, worst first, every observation reprojecting farther
-// than maxTrackReprojectionErrorPx. Bad input throws reftrack::Error naming the image or pair.
+// than maxTrackReprojectionErrorPx. Last, the keypoint layer for relocalisation is built
+// (buildReferenceKeypoints with params.relocalisation, unless disabled there). Bad input throws
+// reftrack::Error naming the image or pair.
 #include <functional>
 #include <optional>
 #include <string>

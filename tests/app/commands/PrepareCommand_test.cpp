@@ -313,6 +313,9 @@ TEST_F(PrepareCommandTest, ThreeReferencesFromAFolderGiveAVersionTwoMap) {
   const MultiReferenceMap map = MultiReferenceMap::load(out);
   ASSERT_EQ(map.size(), 3);
   EXPECT_LT(RigidPose::translationDistance(map.views[2].T, *truthC_), 1e-9);
+  // The keypoint layer for relocalisation came through the YAML round trip.
+  EXPECT_EQ(map.keypointKind, "orb");
+  for (const ReferenceView& v : map.views) EXPECT_GT(v.keypoints.pointCount(), 100) << v.name;
   // Depth along A's ray through A's corner against the true surface, for every point A sees;
   // separately for the points seen by 2 and by 3 references.
   int seenBy3 = 0, wrong = 0, n = 0, n3 = 0;
