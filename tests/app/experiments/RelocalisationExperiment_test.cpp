@@ -3,9 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <memory>
 
+#include "app/experiments/SimulatedSequence.hpp"
 #include "engine/core/Error.hpp"
 #include "engine/evaluation/TrajectoryEvaluator.hpp"
+#include "engine/tracking/MultiReferenceTracker.hpp"
+#include "render/context/GlContext.hpp"
 
 using namespace reftrack;
 using namespace reftrack::app;
@@ -67,4 +71,43 @@ TEST(RelocalisationExperiment, OptionsCheckNamesTheBadField) {
   o = {};
   o.views.maxAngleDeg = 120;
   EXPECT_THROW(o.check(), Error);
+}
+
+// Issue 13's cold start and kidnapped camera on small samples, against the simulator's exact
+// poses: 20 cold starts and 10 kidnaps over the 6-reference walkaround map. A wrong pose (cube
+// error > 5 px) is never acceptable: none asserted. The issue's rate target (>= 95% good, i.e.
+// >= 17 of 20 and >= 8 of 10 at a 1.6% / 8.6% chance of falling below with a true 95%) is NOT
+// met yet: this seed measures 13/20 cold starts and 4/10 kidnaps good (MultiReferenceTracker +
+// Relocaliser of 2026-12-01). The bounds below guard that level (two trials of slack each) until
+// the targets are reached; then raise them to 17 and 8.
+TEST(RelocalisationExperiment, ColdStartAndKidnappedCameraOnSmallSamples) {
+  const auto gl = render::createHeadlessContext();
+  SimulationOptions o;
+  o.preset = "walkaround";
+  o.frames = 1;
+  o.references = 6;
+  SceneSimulator sim(o);
+  const TrackerParams params;
+  const MultiReferenceMap map = prepareSimulatedReferences(sim, 6, {}, params.relocalisation);
+  RelocalisationExperimentOptions e;
+  e.coldStarts = 20;
+  e.kidnaps = 10;
+  e.baseline = false;
+  const RelocalisationExperimentResult r = runRelocalisationExperiment(
+      sim, map,
+      [&] {
+        auto tracker = std::make_shared<MultiReferenceTracker>(map, params);
+        return FrameTracker([tracker](const cv::Mat& frame) {
+          return tracker->process(frame).tracking.worldToCamera;
+        });
+      },
+      e);
+  const RateSummary cold = r.coldStart(), kidnap = r.kidnap();
+  std::cout << "cold start " << cold.good << "/" << cold.trials << " good, " << cold.wrong
+            << " wrong, median " << r.medianColdStartMs() << " ms; kidnapped " << kidnap.good << "/"
+            << kidnap.trials << ", " << kidnap.wrong << " wrong\n";
+  EXPECT_GE(cold.good, 11);
+  EXPECT_EQ(cold.wrong, 0);
+  EXPECT_GE(kidnap.good, 2);
+  EXPECT_EQ(kidnap.wrong, 0);
 }
