@@ -18,13 +18,6 @@ std::string sizeText(cv::Size s) {
   return std::to_string(s.width) + "x" + std::to_string(s.height);
 }
 
-std::vector<ReferenceCorner> referenceCorners(const std::vector<Corner>& corners) {
-  std::vector<ReferenceCorner> out;
-  out.reserve(corners.size());
-  for (const Corner& c : corners) out.push_back({c.position, c.contrast});
-  return out;
-}
-
 int occupiedCells(const std::vector<ReferenceMatch>& matches,
                   const std::vector<ReferenceCorner>& cornersA, cv::Size size) {
   std::vector<char> cells(kGridColumns * kGridRows, 0);
@@ -42,12 +35,38 @@ int occupiedCells(const std::vector<ReferenceMatch>& matches,
 
 }  // namespace
 
+std::vector<ReferenceCorner> referenceCornersOf(const std::vector<Corner>& corners) {
+  std::vector<ReferenceCorner> out;
+  out.reserve(corners.size());
+  for (const Corner& c : corners) out.push_back({c.position, c.contrast});
+  return out;
+}
+
+void checkReferenceImage(const ReferenceImage& r, const PinholeCamera& camera) {
+  if (r.image.empty()) throw Error("reference image '" + r.name + "' is empty or unreadable");
+  if (r.image.size() != camera.imageSize())
+    throw Error("reference image '" + r.name + "' is " + sizeText(r.image.size()) +
+                " but the camera is calibrated for " + sizeText(camera.imageSize()) +
+                " (wrong camera file?)");
+}
+
+void checkDistinctReferenceImages(const ReferenceImage& a, const ReferenceImage& b) {
+  if (a.image.type() == b.image.type() && a.image.size() == b.image.size() &&
+      cv::norm(a.image, b.image, cv::NORM_INF) == 0.0)
+    throw Error("reference images '" + a.name + "' and '" + b.name +
+                "' are identical: two views from different places are needed (no baseline)");
+}
+
 void ReferencePreparerParams::check() const {
   corners.check();
   matching.check();
   marker.check();
   requireFiniteInRange("preparation.min_baseline_m", minBaselineMetres, 0.0, 1e6);
   requireIntInRange("preparation.min_matches", minMatches, 0, 10000000);
+  requireFiniteInRange("preparation.max_pair_view_angle_deg", maxPairViewAngleDeg, 0.0, 180.0);
+  requireIntInRange("preparation.min_pair_matches", minPairMatches, 1, 10000000);
+  requireFiniteInRange("preparation.max_track_reprojection_error_px", maxTrackReprojectionErrorPx,
+                       1e-3, 1e3);
 }
 
 void ReferencePreparerParams::write(cv::FileStorage& fs) const {
@@ -65,7 +84,9 @@ void ReferencePreparerParams::write(cv::FileStorage& fs) const {
      << marker.maxReprojectionRmsPx << "}"
      << "preparation"
      << "{"
-     << "min_baseline_m" << minBaselineMetres << "min_matches" << minMatches << "}";
+     << "min_baseline_m" << minBaselineMetres << "min_matches" << minMatches
+     << "max_pair_view_angle_deg" << maxPairViewAngleDeg << "min_pair_matches" << minPairMatches
+     << "max_track_reprojection_error_px" << maxTrackReprojectionErrorPx << "}";
 }
 
 void ReferencePreparerParams::read(const cv::FileNode& root) {
@@ -76,6 +97,11 @@ void ReferencePreparerParams::read(const cv::FileNode& root) {
   readConfigValue(root["marker"], "marker", "max_reprojection_rms_px", marker.maxReprojectionRmsPx);
   readConfigValue(root["preparation"], "preparation", "min_baseline_m", minBaselineMetres);
   readConfigValue(root["preparation"], "preparation", "min_matches", minMatches);
+  readConfigValue(root["preparation"], "preparation", "max_pair_view_angle_deg",
+                  maxPairViewAngleDeg);
+  readConfigValue(root["preparation"], "preparation", "min_pair_matches", minPairMatches);
+  readConfigValue(root["preparation"], "preparation", "max_track_reprojection_error_px",
+                  maxTrackReprojectionErrorPx);
   check();
 }
 
@@ -99,16 +125,8 @@ ReferencePreparer::ReferencePreparer(PinholeCamera camera, Params params)
 }
 
 void ReferencePreparer::checkImages(const ReferenceImage& a, const ReferenceImage& b) const {
-  for (const ReferenceImage* r : {&a, &b}) {
-    if (r->image.empty()) throw Error("reference image '" + r->name + "' is empty or unreadable");
-    if (r->image.size() != camera_.imageSize())
-      throw Error("reference image '" + r->name + "' is " + sizeText(r->image.size()) +
-                  " but the camera is calibrated for " + sizeText(camera_.imageSize()) +
-                  " (wrong camera file?)");
-  }
-  if (a.image.type() == b.image.type() && cv::norm(a.image, b.image, cv::NORM_INF) == 0.0)
-    throw Error("reference images '" + a.name + "' and '" + b.name +
-                "' are identical: two views from different places are needed (no baseline)");
+  for (const ReferenceImage* r : {&a, &b}) checkReferenceImage(*r, camera_);
+  checkDistinctReferenceImages(a, b);
 }
 
 Preparation ReferencePreparer::prepare(const ReferenceImage& a, const ReferenceImage& b,
@@ -159,8 +177,8 @@ Preparation ReferencePreparer::triangulate(const ReferenceImage& a, const Refere
   map.T_B = T_B;
   map.imageA = a.image;
   map.imageB = b.image;
-  map.cornersA = referenceCorners(cornersA);
-  map.cornersB = referenceCorners(cornersB);
+  map.cornersA = referenceCornersOf(cornersA);
+  map.cornersB = referenceCornersOf(cornersB);
   map.poseSource = poseSource;
   map.preparationParams = params_.toYaml();
 

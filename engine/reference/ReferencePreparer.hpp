@@ -10,6 +10,7 @@
 #include <string>
 
 #include "engine/config/CornerParams.hpp"
+#include "engine/features/Corner.hpp"
 #include "engine/geometry/PinholeCamera.hpp"
 #include "engine/geometry/RigidPose.hpp"
 #include "engine/reference/EpipolarGuidedMatcher.hpp"
@@ -38,6 +39,18 @@ struct ReferencePreparerParams {
   MarkerPoseParams marker;
   double minBaselineMetres = 0.01;  // reference cameras closer than this cannot triangulate
   int minMatches = 30;              // fewer kept matches than this is a failed preparation
+  // N references (MultiReferencePreparer). A pair is matched only when the angle between the
+  // two optical axes is at most this: the warped NCC windows of EpipolarGuidedMatcher model
+  // planes slanted up to matching.slant_deg (50) and wider view changes correlate poorly.
+  double maxPairViewAngleDeg = 60.0;
+  // ... and its matches are merged into the map only when at least this many survive (fewer:
+  // too little overlap to trust them; the N = 2 preparation needs min_matches instead).
+  int minPairMatches = 12;
+  // A point seen by 3+ references is re-triangulated from all its corners; an observation
+  // reprojecting farther than this from its corner is dropped. Default: a pair's own gates
+  // (matching.max_peak_offset_px 1.5 between B's corner and the peak it triangulated from, plus
+  // matching.max_reprojection_error_px 1.0) admit a corner up to 2.5 px from its point.
+  double maxTrackReprojectionErrorPx = 2.5;
 
   void check() const;                     // throws reftrack::Error naming the bad field
   void write(cv::FileStorage& fs) const;  // sections corners, matching, marker, preparation
@@ -52,6 +65,14 @@ struct ReferenceImage {
   cv::Mat image;  // BGR or grey, 8-bit
   std::string name;
 };
+
+// Shared by the two- and N-reference preparations. Throws reftrack::Error naming the image when
+// it is empty or not of the camera's size.
+void checkReferenceImage(const ReferenceImage& image, const PinholeCamera& camera);
+// Throws reftrack::Error naming both images when they are pixel for pixel the same (no baseline).
+void checkDistinctReferenceImages(const ReferenceImage& a, const ReferenceImage& b);
+// The corners of one reference image as the map stores them.
+std::vector<ReferenceCorner> referenceCornersOf(const std::vector<Corner>& corners);
 
 struct PreparationReport {
   std::optional<double> markerRmsA, markerRmsB;  // marker corner reprojection RMS (pixels)

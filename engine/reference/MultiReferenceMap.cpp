@@ -1,0 +1,316 @@
+// MultiReferenceMap: check, save (format version 2) and load (versions 1 and 2).
+#include "engine/reference/MultiReferenceMap.hpp"
+
+#include <cmath>
+#include <opencv2/imgcodecs.hpp>
+#include <set>
+#include <sstream>
+
+#include "engine/core/AtomicFile.hpp"
+#include "engine/core/Error.hpp"
+
+namespace reftrack {
+
+namespace {
+
+constexpr const char* kFormatName = "reftrack-reference-map";
+
+std::string viewName(std::size_t i) { return "views[" + std::to_string(i) + "]"; }
+std::string pointName(std::size_t i) { return "points[" + std::to_string(i) + "]"; }
+
+cv::Mat poseToMat(const RigidPose& T) {
+  cv::Mat m(4, 4, CV_64F);
+  const Eigen::Matrix4d M = T.matrix4();
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) m.at<double>(r, c) = M(r, c);
+  return m;
+}
+
+// Corners as rows (x, y, rmsContrast).
+cv::Mat cornersToMat(const std::vector<ReferenceCorner>& cs) {
+  cv::Mat m(static_cast<int>(cs.size()), 3, CV_32F);
+  for (std::size_t i = 0; i < cs.size(); ++i) {
+    const int r = static_cast<int>(i);
+    m.at<float>(r, 0) = cs[i].pixel.x;
+    m.at<float>(r, 1) = cs[i].pixel.y;
+    m.at<float>(r, 2) = cs[i].rmsContrast;
+  }
+  return m;
+}
+
+// A file name that stays inside the map folder: no separators, no "." / "..", not map.yml.
+bool isPlainFileName(const std::string& name) {
+  return !name.empty() && name != "." && name != ".." &&
+         name.find_first_of("/\\") == std::string::npos && name != MultiReferenceMap::kFileName;
+}
+
+}  // namespace
+
+void MultiReferenceMap::check() const {
+  try {
+    camera.check();
+  } catch (const Error& e) {
+    throw Error(std::string("camera: ") + e.what());
+  }
+  if (views.size() < 2)
+    throw Error("views: a map needs at least 2 references, got " + std::to_string(views.size()));
+  const cv::Size imageSize = camera.imageSize();
+  std::set<std::string> names;
+  for (std::size_t v = 0; v < views.size(); ++v) {
+    const ReferenceView& view = views[v];
+    const std::string at = viewName(v);
+    if (!isPlainFileName(view.name))
+      throw Error(at + ".name '" + view.name + "' is not a plain image file name");
+    if (!names.insert(view.name).second)
+      throw Error(at + ".name '" + view.name + "' is used by another view");
+    if (!view.T.allFinite()) throw Error(at + ".pose is not finite");
+    if (view.image.empty()) throw Error(at + ".image is missing");
+    if (view.image.size() != imageSize) {
+      std::ostringstream ss;
+      ss << at << ".image is " << view.image.cols << "x" << view.image.rows << " but the camera is "
+         << imageSize.width << "x" << imageSize.height;
+      throw Error(ss.str());
+    }
+    for (std::size_t i = 0; i < view.corners.size(); ++i) {
+      const ReferenceCorner& c = view.corners[i];
+      const std::string ci = at + ".corners[" + std::to_string(i) + "]";
+      if (!std::isfinite(c.pixel.x) || !std::isfinite(c.pixel.y) || !std::isfinite(c.rmsContrast))
+        throw Error(ci + " is not finite");
+      if (c.pixel.x < -0.5f || c.pixel.y < -0.5f || c.pixel.x > imageSize.width - 0.5f ||
+          c.pixel.y > imageSize.height - 0.5f)
+        throw Error(ci + " lies outside the image");
+    }
+    view.keypoints.check(at + ".keypoints");
+  }
+  for (std::size_t a = 0; a < views.size(); ++a)
+    for (std::size_t b = a + 1; b < views.size(); ++b)
+      if (RigidPose::translationDistance(views[a].T.inverse(), views[b].T.inverse()) < 1e-6 &&
+          RigidPose::rotationDistance(views[a].T, views[b].T) < 1e-9)
+        throw Error(viewName(b) + ".pose is the same as " + viewName(a) + ".pose");
+  for (std::size_t p = 0; p < points.size(); ++p) {
+    const MapPoint& point = points[p];
+    const std::string at = pointName(p);
+    if (!point.world.allFinite()) throw Error(at + ".world is not finite");
+    if (point.observations.size() < 2)
+      throw Error(at + ".observations: " + std::to_string(point.observations.size()) +
+                  " observation(s), a point needs at least 2");
+    std::set<int> seen;
+    for (std::size_t o = 0; o < point.observations.size(); ++o) {
+      const PointObservation& obs = point.observations[o];
+      const std::string oi = at + ".observations[" + std::to_string(o) + "]";
+      if (obs.view < 0 || obs.view >= size())
+        throw Error(oi + ".view " + std::to_string(obs.view) + " is out of range (" +
+                    std::to_string(size()) + " views)");
+      const auto& corners = views[static_cast<std::size_t>(obs.view)].corners;
+      if (obs.corner < 0 || obs.corner >= static_cast<int>(corners.size()))
+        throw Error(oi + ".corner " + std::to_string(obs.corner) + " is out of range (" +
+                    viewName(static_cast<std::size_t>(obs.view)) + " has " +
+                    std::to_string(corners.size()) + " corners)");
+      if (!seen.insert(obs.view).second)
+        throw Error(oi + ".view " + std::to_string(obs.view) + " appears twice in one point");
+      const Eigen::Vector3d inCamera = views[static_cast<std::size_t>(obs.view)].T * point.world;
+      if (!(inCamera.z() > 0.0))
+        throw Error(at + ".world lies behind the camera of " +
+                    viewName(static_cast<std::size_t>(obs.view)));
+    }
+  }
+}
+
+void MultiReferenceMap::save(const std::filesystem::path& folder) const {
+  check();
+  std::filesystem::create_directories(folder);
+  for (const ReferenceView& view : views) {
+    const std::filesystem::path target = folder / view.name;
+    writeFileAtomically(target, [&](const std::filesystem::path& tmp) {
+      if (!cv::imwrite(tmp.string(), view.image)) throw Error("cannot write " + target.string());
+    });
+  }
+  writeFileAtomically(folder / kFileName, [&](const std::filesystem::path& tmp) {
+    cv::FileStorage fs(tmp.string(), cv::FileStorage::WRITE | cv::FileStorage::FORMAT_YAML);
+    fs << "format" << kFormatName;
+    fs << "version" << kFormatVersion;
+    fs << "image_width" << camera.imageSize().width << "image_height" << camera.imageSize().height;
+    fs << "camera_matrix" << cv::Mat(camera.Kcv());
+    fs << "distortion_coefficients" << cv::Mat(camera.distortion(), true);
+    fs << "pose_source" << poseSource;
+    fs << "keypoint_kind" << keypointKind;
+    fs << "views"
+       << "[";
+    for (std::size_t v = 0; v < views.size(); ++v) {
+      const ReferenceView& view = views[v];
+      fs << "{";
+      fs << "name" << view.name;
+      fs << "T" << poseToMat(view.T);
+      fs << "anchored" << static_cast<int>(view.anchored);
+      fs << "corners" << cornersToMat(view.corners);
+      view.keypoints.write(fs, "keypoints");
+      fs << "}";
+    }
+    fs << "]";
+    // points: world xyz per row; observations: (point, view, corner) per row, grouped by point.
+    cv::Mat world(static_cast<int>(points.size()), 3, CV_64F);
+    std::size_t observationCount = 0;
+    for (const MapPoint& p : points) observationCount += p.observations.size();
+    cv::Mat obs(static_cast<int>(observationCount), 3, CV_32S);
+    int row = 0;
+    for (std::size_t p = 0; p < points.size(); ++p) {
+      for (int k = 0; k < 3; ++k) world.at<double>(static_cast<int>(p), k) = points[p].world[k];
+      for (const PointObservation& o : points[p].observations) {
+        obs.at<int>(row, 0) = static_cast<int>(p);
+        obs.at<int>(row, 1) = o.view;
+        obs.at<int>(row, 2) = o.corner;
+        ++row;
+      }
+    }
+    fs << "point_count" << static_cast<int>(points.size());
+    fs << "points" << world << "observations" << obs;
+    fs << "preparation_params" << preparationParams;
+    fs.release();
+  });
+}
+
+MultiReferenceMap MultiReferenceMap::load(const std::filesystem::path& folder) {
+  const std::filesystem::path file = folder / kFileName;
+  const std::string where = "reference map '" + file.string() + "'";
+  if (!std::filesystem::exists(file))
+    throw Error(where + " does not exist (run `reftrack prepare` first)");
+  cv::FileStorage fs;
+  try {
+    if (!fs.open(file.string(), cv::FileStorage::READ)) throw Error(where + " cannot be opened");
+  } catch (const cv::Exception& e) {
+    throw Error(where + " is corrupt or truncated: " + e.err);
+  }
+  int version = 0;
+  try {
+    const cv::FileNode format = fs["format"], versionNode = fs["version"];
+    if (format.empty() || versionNode.empty())
+      throw Error(where + ": missing field '" + (format.empty() ? "format" : "version") +
+                  "' (truncated file?)");
+    if (static_cast<std::string>(format) != kFormatName)
+      throw Error(where + " is not a reftrack reference map");
+    version = static_cast<int>(versionNode);
+  } catch (const cv::Exception& e) {
+    throw Error(where + " has a malformed field: " + e.err);
+  }
+  if (version == ReferenceMap::kFormatVersion) {
+    fs.release();
+    return fromPair(ReferenceMap::load(folder));
+  }
+  if (version != kFormatVersion)
+    throw Error(where + " has format version " + std::to_string(version) +
+                "; this reftrack reads versions " + std::to_string(ReferenceMap::kFormatVersion) +
+                " and " + std::to_string(kFormatVersion));
+
+  MultiReferenceMap map;
+  try {
+    const auto need = [&](const cv::FileNode& parent, const std::string& key,
+                          const std::string& name) {
+      cv::FileNode n = parent[key];
+      if (n.empty()) throw Error(where + ": missing field '" + name + "' (truncated file?)");
+      return n;
+    };
+    const cv::FileNode root = fs.root();
+    const auto readMat = [&](const cv::FileNode& parent, const std::string& key,
+                             const std::string& name, int rows, int cols) {
+      cv::Mat m;
+      need(parent, key, name) >> m;
+      if ((rows >= 0 && m.rows != rows) || (cols >= 0 && !m.empty() && m.cols != cols))
+        throw Error(where + ": field '" + name + "' has the wrong shape (" +
+                    std::to_string(m.rows) + "x" + std::to_string(m.cols) + ")");
+      return m;
+    };
+    cv::Mat K = readMat(root, "camera_matrix", "camera_matrix", 3, 3), D;
+    K.convertTo(K, CV_64F);
+    fs["distortion_coefficients"] >> D;
+    Eigen::Matrix3d Ke;
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) Ke(r, c) = K.at<double>(r, c);
+    std::vector<double> dist;
+    if (!D.empty()) {
+      D.convertTo(D, CV_64F);
+      D = D.reshape(1, 1);
+      dist.assign(D.ptr<double>(), D.ptr<double>() + D.cols);
+    }
+    map.camera =
+        PinholeCamera(Ke,
+                      cv::Size(static_cast<int>(need(root, "image_width", "image_width")),
+                               static_cast<int>(need(root, "image_height", "image_height"))),
+                      dist);
+    map.poseSource = static_cast<std::string>(fs["pose_source"]);
+    map.keypointKind = static_cast<std::string>(fs["keypoint_kind"]);
+    map.preparationParams = static_cast<std::string>(fs["preparation_params"]);
+
+    const cv::FileNode viewsNode = need(root, "views", "views");
+    if (!viewsNode.isSeq()) throw Error(where + ": field 'views' is not a list");
+    for (std::size_t v = 0; v < viewsNode.size(); ++v) {
+      const cv::FileNode node = viewsNode[static_cast<int>(v)];
+      const std::string at = viewName(v);
+      if (!node.isMap()) throw Error(where + ": field '" + at + "' is not a map");
+      ReferenceView view;
+      view.name = static_cast<std::string>(need(node, "name", at + ".name"));
+      cv::Mat T = readMat(node, "T", at + ".T", 4, 4);
+      T.convertTo(T, CV_64F);
+      Eigen::Matrix4d M;
+      for (int r = 0; r < 4; ++r)
+        for (int c = 0; c < 4; ++c) M(r, c) = T.at<double>(r, c);
+      if (!M.allFinite()) throw Error(where + ": field '" + at + ".T' is not finite");
+      if ((M.row(3) - Eigen::RowVector4d(0, 0, 0, 1)).norm() > 1e-9 ||
+          (M.topLeftCorner<3, 3>() * M.topLeftCorner<3, 3>().transpose() -
+           Eigen::Matrix3d::Identity())
+                  .norm() > 1e-6)
+        throw Error(where + ": field '" + at + ".T' is not a rigid transform");
+      view.T = RigidPose::fromMatrix4(M);
+      view.anchored = static_cast<int>(need(node, "anchored", at + ".anchored")) != 0;
+      cv::Mat corners = readMat(node, "corners", at + ".corners", -1, 3);
+      if (!corners.empty()) corners.convertTo(corners, CV_32F);
+      for (int i = 0; i < corners.rows; ++i)
+        view.corners.push_back(
+            {{corners.at<float>(i, 0), corners.at<float>(i, 1)}, corners.at<float>(i, 2)});
+      try {
+        view.keypoints = ReferenceKeypoints::read(node["keypoints"], at + ".keypoints");
+      } catch (const Error& e) {
+        throw Error(where + ": " + e.what());
+      }
+      if (!isPlainFileName(view.name))
+        throw Error(where + ": field '" + at + ".name' ('" + view.name +
+                    "') is not a plain image file name");
+      const std::filesystem::path image = folder / view.name;
+      if (!std::filesystem::exists(image))
+        throw Error(where + ": reference image '" + image.string() + "' (" + at +
+                    ".name) is missing");
+      view.image = cv::imread(image.string(), cv::IMREAD_UNCHANGED);
+      if (view.image.empty())
+        throw Error(where + ": reference image '" + image.string() + "' cannot be read");
+      map.views.push_back(std::move(view));
+    }
+
+    const int pointCount = static_cast<int>(need(root, "point_count", "point_count"));
+    if (pointCount < 0) throw Error(where + ": field 'point_count' is negative");
+    cv::Mat world = readMat(root, "points", "points", pointCount, 3);
+    cv::Mat obs = readMat(root, "observations", "observations", -1, 3);
+    if (!world.empty()) world.convertTo(world, CV_64F);
+    if (!obs.empty()) obs.convertTo(obs, CV_32S);
+    map.points.resize(static_cast<std::size_t>(pointCount));
+    for (int p = 0; p < pointCount; ++p)
+      map.points[static_cast<std::size_t>(p)].world =
+          Eigen::Vector3d(world.at<double>(p, 0), world.at<double>(p, 1), world.at<double>(p, 2));
+    for (int r = 0; r < obs.rows; ++r) {
+      const int p = obs.at<int>(r, 0);
+      if (p < 0 || p >= pointCount)
+        throw Error(where + ": field 'observations' row " + std::to_string(r) + " names point " +
+                    std::to_string(p) + " of " + std::to_string(pointCount));
+      map.points[static_cast<std::size_t>(p)].observations.push_back(
+          {obs.at<int>(r, 1), obs.at<int>(r, 2)});
+    }
+  } catch (const cv::Exception& e) {
+    throw Error(where + " has a malformed field: " + e.err);
+  }
+  try {
+    map.check();
+  } catch (const Error& e) {
+    throw Error(where + ": " + e.what());
+  }
+  return map;
+}
+
+}  // namespace reftrack
