@@ -213,7 +213,9 @@ std::string MapExtender::addReference(const cv::Mat& frame, int frameIndex, cons
       int& newPoint = newPointOf[static_cast<std::size_t>(match.cornerB)];
       if (oldPoint >= 0 && newPoint >= 0) continue;  // both taken: the same point or a conflict
       if (oldPoint >= 0) {  // an existing point gains its corner in the new reference
-        m.points[static_cast<std::size_t>(oldPoint)].observations.push_back({n, match.cornerB});
+        MapPoint& p = m.points[static_cast<std::size_t>(oldPoint)];
+        if (observationIn(p, n) >= 0) continue;  // already has another corner there: conflict
+        p.observations.push_back({n, match.cornerB});
         newPoint = oldPoint;
         ++added.pointsExtended;
       } else if (newPoint >= 0) {  // the new corner's point gains this old corner
