@@ -16,6 +16,7 @@
 #include "app/viewer/ViewerApp.hpp"
 #include "engine/core/Error.hpp"
 #include "engine/evaluation/TrajectoryEvaluator.hpp"
+#include "engine/reference/MultiReferenceMap.hpp"
 #include "engine/reference/ReferencePreparer.hpp"
 #include "render/context/GlfwWindowContext.hpp"
 
@@ -82,7 +83,7 @@ CommandRegistration registerDemoCommand(CLI::App& parent) {
                 {cv::imread((sequence / "reference_a.png").string()), "reference_a.png"},
                 {cv::imread((sequence / "reference_b.png").string()), "reference_b.png"},
                 MarkerSpec::parse("DICT_6X6_250:23:0.2"));
-            prep.map.save(args->out / "scene");
+            MultiReferenceMap::fromPair(prep.map).save(args->out / "scene");
             std::cout << "demo: reference map with " << prep.map.matches.size()
                       << " 3D points (marker reprojection RMS "
                       << prep.report.markerRmsA.value_or(NAN) << " / "

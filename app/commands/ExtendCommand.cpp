@@ -14,6 +14,7 @@
 #include "engine/config/ConfigValue.hpp"
 #include "engine/core/Error.hpp"
 #include "engine/reference/MapExtender.hpp"
+#include "engine/relocalisation/ReferenceKeypointBuilder.hpp"
 #include "render/context/GlContext.hpp"
 
 namespace reftrack::app {
@@ -124,6 +125,17 @@ void runExtend(const ExtendOptions& o) {
   progress.finish();
   if (processed == 0) throw Error("input '" + o.input + "' gave no frames");
   const BundleAdjustmentReport final = extender.finish();
+  // The keypoint layer of every reference (relocalisation), as `prepare` builds it.
+  if (params.tracker.relocalisation.enabled) {
+    buildReferenceKeypoints(extender.map(), params.tracker.relocalisation);
+    std::size_t keypoints = 0, withPoints = 0;
+    for (const ReferenceView& v : extender.map().views) {
+      keypoints += v.keypoints.keypoints.size();
+      for (const Eigen::Vector3d& X : v.keypoints.points) withPoints += X.allFinite() ? 1 : 0;
+    }
+    std::printf("keypoint layer (%s): %zu keypoints over %d references, %zu with a 3D point\n",
+                extender.map().keypointKind.c_str(), keypoints, extender.map().size(), withPoints);
+  }
   extender.map().save(o.out);
   printSummary(extender, before, processed, tracked, wellSupported, rejections, final, params,
                o.out);

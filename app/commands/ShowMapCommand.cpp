@@ -1,5 +1,5 @@
-// `reftrack show-map`: a picture of a reference map — both reference images with their matched
-// corners, and the 3D points with the two reference cameras — in a window, or as a PNG.
+// `reftrack show-map`: a picture of a reference map — every reference image with the corners of
+// its map points, and the 3D points with every reference camera — in a window, or as a PNG.
 // glad before GLFW: GLFW must not pull in the system GL header.
 #include <glad/gl.h>
 // clang-format off
@@ -16,7 +16,7 @@
 #include "app/mapview/MapPicture.hpp"
 #include "engine/core/AtomicFile.hpp"
 #include "engine/core/Error.hpp"
-#include "engine/reference/ReferenceMap.hpp"
+#include "engine/reference/MultiReferenceMap.hpp"
 #include "render/context/GlfwWindowContext.hpp"
 #include "render/gl/Texture2D.hpp"
 
@@ -77,13 +77,14 @@ void showInWindow(const cv::Mat& picture, const std::string& title) {
 }
 
 void runShowMap(const ShowMapOptions& o) {
-  const ReferenceMap map = ReferenceMap::load(o.map);
+  const MultiReferenceMap map = MultiReferenceMap::load(o.map);
   const cv::Mat picture = drawMapPicture(map);
   if (!o.screenshot.empty()) {
     writePng(picture, o.screenshot);
-    std::printf("wrote %s (%dx%d): %zu matches, %zu + %zu corners\n", o.screenshot.c_str(),
-                picture.cols, picture.rows, map.matches.size(), map.cornersA.size(),
-                map.cornersB.size());
+    std::size_t corners = 0;
+    for (const ReferenceView& v : map.views) corners += v.corners.size();
+    std::printf("wrote %s (%dx%d): %d references, %zu points, %zu corners\n", o.screenshot.c_str(),
+                picture.cols, picture.rows, map.size(), map.points.size(), corners);
   }
   if (!o.headless) showInWindow(picture, "reftrack map: " + o.map);
 }
@@ -91,12 +92,13 @@ void runShowMap(const ShowMapOptions& o) {
 CommandRegistration registerShowMapCommand(CLI::App& parent) {
   auto options = std::make_shared<ShowMapOptions>();
   CLI::App* sub = parent.add_subcommand(
-      "show-map", "Show a reference map: matched corners in A and B, 3D points, cameras");
+      "show-map", "Show a reference map: every reference, its corners, 3D points, cameras");
   sub->footer(
-      "Top: reference images A | B, grey dots = corners, coloured lines = A<->B matches\n"
-      "(colour = depth in camera A, blue near, red far). Bottom: the 3D points and the two\n"
-      "reference cameras (frusta, A green, B orange) from a viewpoint behind and above them.\n"
-      "Window: Esc or Q closes it.");
+      "Top: the reference images (0 | 1 | ..., numbered), grey dots = corners, coloured dots =\n"
+      "corners of map points (colour = depth in the point's first reference, blue near, red\n"
+      "far; two references: matches as lines). Bottom: the 3D points and every reference camera\n"
+      "(frustum with its index) from a viewpoint behind and above them. Reads map versions 1\n"
+      "and 2. Window: Esc or Q closes it.");
   sub->add_option("--map", options->map, "reference map folder (from `reftrack prepare`)")
       ->required()
       ->check(CLI::ExistingDirectory);

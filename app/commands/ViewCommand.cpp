@@ -16,6 +16,7 @@
 #include "app/viewer/ViewerApp.hpp"
 #include "engine/calibration/CalibrationBoard.hpp"
 #include "engine/core/Error.hpp"
+#include "engine/reference/MultiReferenceMap.hpp"
 
 namespace reftrack::app {
 
@@ -101,7 +102,8 @@ CommandRegistration registerViewCommand(CLI::App& parent) {
                                                              const TrackerParams& params) {
                 std::unique_ptr<FrameTracker> sixDof, homography;
                 if (!map.empty())
-                  sixDof = std::make_unique<PoseFrameTracker>(ReferenceMap::load(map), params);
+                  sixDof = std::make_unique<PoseFrameTracker>(
+                      MultiReferenceMap::load(map).pair(0, 1), params);
                 if (!reference.empty()) {
                   const cv::Mat ref = cv::imread(reference.string(), cv::IMREAD_COLOR);
                   if (ref.empty())

@@ -8,6 +8,7 @@
 #include "app/cli/ProgressBar.hpp"
 #include "app/simulator/SceneSimulator.hpp"
 #include "engine/core/Error.hpp"
+#include "engine/reference/MultiReferenceMap.hpp"
 
 namespace reftrack::app {
 
@@ -53,7 +54,7 @@ fs::path framePath(const fs::path& dir, int k) {
 
 void store(const SimulatedSequence& s, const fs::path& dir) {
   fs::create_directories(dir / "frames");
-  s.preparation.map.save(dir / "map");
+  MultiReferenceMap::fromPair(s.preparation.map).save(dir / "map");
   const std::vector<int> png = {cv::IMWRITE_PNG_COMPRESSION, 1};
   for (std::size_t k = 0; k < s.frames.size(); ++k) {
     const fs::path file = framePath(dir, static_cast<int>(k));
@@ -66,7 +67,7 @@ void store(const SimulatedSequence& s, const fs::path& dir) {
 SimulatedSequence load(const SimulationOptions& options, const fs::path& dir) {
   SimulatedSequence s;
   s.options = options;
-  s.preparation.map = ReferenceMap::load(dir / "map");
+  s.preparation.map = MultiReferenceMap::load(dir / "map").pair(0, 1);
   s.camera = s.preparation.map.camera;
   s.groundTruth = TumTrajectory::load(dir / "groundtruth.txt");
   if (static_cast<int>(s.groundTruth.poses.size()) != options.frames)

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 #include <optional>
+#include <sstream>
 #include <string>
 
 namespace reftrack::app {
@@ -70,12 +71,12 @@ void drawLine(cv::Mat& img, const VirtualCamera& cam, const Eigen::Vector3d& a,
 }
 
 // Frustum of a reference camera (world->camera pose T) drawn `depth` metres deep.
-void drawFrustum(cv::Mat& img, const VirtualCamera& view, const ReferenceMap& map,
+void drawFrustum(cv::Mat& img, const VirtualCamera& view, const PinholeCamera& camera,
                  const RigidPose& T, double depth, const cv::Scalar& colour,
                  const std::string& label) {
-  const Eigen::Matrix3d Kinv = map.camera.K().inverse();
+  const Eigen::Matrix3d Kinv = camera.K().inverse();
   const RigidPose cameraToWorld = T.inverse();
-  const cv::Size s = map.camera.imageSize();
+  const cv::Size s = camera.imageSize();
   const Eigen::Vector3d centre = T.cameraCentre();
   Eigen::Vector3d corners[4];
   const double u[4] = {-0.5, s.width - 0.5, s.width - 0.5, -0.5};
@@ -96,83 +97,139 @@ void drawFrustum(cv::Mat& img, const VirtualCamera& view, const ReferenceMap& ma
                 cv::LINE_AA);
 }
 
+// Frustum colour of reference i: green, orange, then around the hue circle.
+cv::Scalar referenceColour(int i) {
+  static const cv::Scalar palette[] = {{80, 220, 80},   {80, 160, 255}, {255, 140, 80},
+                                       {220, 90, 220},  {80, 230, 230}, {240, 240, 90},
+                                       {140, 110, 255}, {200, 200, 200}};
+  return palette[static_cast<std::size_t>(i) % (sizeof palette / sizeof palette[0])];
+}
+
+void label(cv::Mat& img, const std::string& text, cv::Point at) {
+  cv::putText(img, text, at, cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(0, 0, 0), 4, cv::LINE_AA);
+  cv::putText(img, text, at, cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(255, 255, 255), 1,
+              cv::LINE_AA);
+}
+
 }  // namespace
 
-cv::Mat drawMapPicture(const ReferenceMap& map) {
+cv::Mat drawMapPicture(const MultiReferenceMap& map) {
   map.check();
   const cv::Size s = map.camera.imageSize();
-  cv::Mat picture(2 * s.height, 2 * s.width, CV_8UC3, cv::Scalar(32, 32, 32));
-  cv::Mat top = picture(cv::Rect(0, 0, 2 * s.width, s.height));
-  toBgr(map.imageA).copyTo(top(cv::Rect(0, 0, s.width, s.height)));
-  toBgr(map.imageB).copyTo(top(cv::Rect(s.width, 0, s.width, s.height)));
+  const int n = map.size();
+  // Tiles: a grid 2 image widths wide (two per row at full size, more per row scaled down).
+  const int columns = std::max(2, static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n)))));
+  const int rows = (n + columns - 1) / columns;
+  const double scale = 2.0 / columns;
+  const cv::Size tile(static_cast<int>(std::lround(s.width * scale)),
+                      static_cast<int>(std::lround(s.height * scale)));
+  const int topHeight = rows * tile.height;
+  cv::Mat picture(topHeight + s.height, 2 * s.width, CV_8UC3, cv::Scalar(32, 32, 32));
+  std::vector<cv::Point2f> origin;
+  for (int v = 0; v < n; ++v) {
+    const cv::Point at((v % columns) * tile.width, (v / columns) * tile.height);
+    origin.emplace_back(static_cast<float>(at.x), static_cast<float>(at.y));
+    cv::Mat bgr = toBgr(map.views[static_cast<std::size_t>(v)].image);
+    if (scale != 1.0) cv::resize(bgr, bgr, tile, 0, 0, cv::INTER_AREA);
+    bgr.copyTo(picture(cv::Rect(at, tile)));
+  }
+  // Pixel of corner c of view v in the picture.
+  const auto inTile = [&](int v, int c) {
+    const cv::Point2f p =
+        map.views[static_cast<std::size_t>(v)].corners[static_cast<std::size_t>(c)].pixel;
+    return origin[static_cast<std::size_t>(v)] +
+           cv::Point2f(static_cast<float>((p.x + 0.5) * scale - 0.5),
+                       static_cast<float>((p.y + 0.5) * scale - 0.5));
+  };
 
-  double zLo = 1e300, zHi = -1e300;
+  // Colour: depth of each point in its first reference (5th..95th percentile, blue near, red far).
   std::vector<double> depths;
-  for (const ReferenceMatch& m : map.matches) depths.push_back(m.pointA.z());
+  for (const MapPoint& p : map.points)
+    depths.push_back(
+        (map.views[static_cast<std::size_t>(p.observations.front().view)].T * p.world).z());
+  double zLo = 0.0, zHi = 0.0;
   if (!depths.empty()) {
     std::vector<double> sorted = depths;
     std::sort(sorted.begin(), sorted.end());
-    zLo = sorted[sorted.size() / 20];  // 5th..95th percentile: outliers do not flatten the scale
+    zLo = sorted[sorted.size() / 20];
     zHi = sorted[sorted.size() - 1 - sorted.size() / 20];
   }
-
-  const float lineWidth = std::max(1.0f, static_cast<float>(s.width) / 640.0f);
-  const cv::Point2f offsetB(static_cast<float>(s.width), 0.0f);
-  for (const ReferenceCorner& c : map.cornersA)
-    cv::circle(top, c.pixel, 2, cv::Scalar(170, 170, 170), cv::FILLED, cv::LINE_AA);
-  for (const ReferenceCorner& c : map.cornersB)
-    cv::circle(top, c.pixel + offsetB, 2, cv::Scalar(170, 170, 170), cv::FILLED, cv::LINE_AA);
-  for (size_t i = 0; i < map.matches.size(); ++i) {
-    const ReferenceMatch& m = map.matches[i];
+  const int dot = std::max(1, static_cast<int>(std::lround(2 * scale)));
+  for (int v = 0; v < n; ++v)
+    for (std::size_t c = 0; c < map.views[static_cast<std::size_t>(v)].corners.size(); ++c)
+      cv::circle(picture, inTile(v, static_cast<int>(c)), dot, cv::Scalar(170, 170, 170),
+                 cv::FILLED, cv::LINE_AA);
+  for (std::size_t i = 0; i < map.points.size(); ++i) {
     const cv::Scalar colour = depthColour(depths[i], zLo, zHi);
-    const cv::Point2f a = map.cornersA[static_cast<size_t>(m.cornerA)].pixel;
-    const cv::Point2f b = map.cornersB[static_cast<size_t>(m.cornerB)].pixel + offsetB;
-    cv::line(top, a, b, colour, static_cast<int>(lineWidth), cv::LINE_AA);
-    cv::circle(top, a, 3, colour, cv::FILLED, cv::LINE_AA);
-    cv::circle(top, b, 3, colour, cv::FILLED, cv::LINE_AA);
+    const auto& obs = map.points[i].observations;
+    // Two references side by side (one row): the match as a line, as in the two-view picture.
+    if (obs.size() == 2 && rows == 1 && n == 2)
+      cv::line(picture, inTile(obs[0].view, obs[0].corner), inTile(obs[1].view, obs[1].corner),
+               colour, std::max(1, s.width / 640), cv::LINE_AA);
+    for (const PointObservation& o : obs)
+      cv::circle(picture, inTile(o.view, o.corner), dot + 1, colour, cv::FILLED, cv::LINE_AA);
   }
-  const auto label = [&](cv::Mat& img, const std::string& text, cv::Point at) {
-    cv::putText(img, text, at, cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(0, 0, 0), 4, cv::LINE_AA);
-    cv::putText(img, text, at, cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(255, 255, 255), 1,
-                cv::LINE_AA);
-  };
-  label(top, "A: " + std::to_string(map.cornersA.size()) + " corners", {10, 22});
-  label(top, "B: " + std::to_string(map.cornersB.size()) + " corners", {s.width + 10, 22});
+  for (int v = 0; v < n; ++v) {
+    const auto& view = map.views[static_cast<std::size_t>(v)];
+    int observed = 0;
+    for (const MapPoint& p : map.points)
+      for (const PointObservation& o : p.observations) observed += o.view == v ? 1 : 0;
+    label(picture,
+          std::to_string(v) + ": " + std::to_string(view.corners.size()) + " corners, " +
+              std::to_string(observed) + " in points",
+          cv::Point(static_cast<int>(origin[static_cast<std::size_t>(v)].x) + 10,
+                    static_cast<int>(origin[static_cast<std::size_t>(v)].y) + 22));
+  }
 
-  // 3D view, in world coordinates: points P_w = T_A^-1 P_A.
-  cv::Mat bottom = picture(cv::Rect(0, s.height, 2 * s.width, s.height));
-  const RigidPose aToWorld = map.T_A.inverse();
-  std::vector<Eigen::Vector3d> world;
-  for (const ReferenceMatch& m : map.matches) world.push_back(aToWorld * m.pointA);
-  const Eigen::Vector3d cA = map.T_A.cameraCentre(), cB = map.T_B.cameraCentre();
-  const Eigen::Vector3d cameras = 0.5 * (cA + cB);
-  Eigen::Vector3d target = cameras + aToWorld.rotation().col(2);  // 1 m ahead of A by default
-  if (!world.empty()) {
+  // 3D view, in world coordinates, from behind and above the reference cameras.
+  cv::Mat bottom = picture(cv::Rect(0, topHeight, 2 * s.width, s.height));
+  Eigen::Vector3d cameras = Eigen::Vector3d::Zero();
+  for (const ReferenceView& v : map.views) cameras += v.T.cameraCentre();
+  cameras /= static_cast<double>(n);
+  const RigidPose firstToWorld = map.views.front().T.inverse();
+  Eigen::Vector3d target = cameras + firstToWorld.rotation().col(2);  // 1 m ahead by default
+  if (!map.points.empty()) {
     target.setZero();
-    for (const Eigen::Vector3d& p : world) target += p;
-    target /= static_cast<double>(world.size());
+    for (const MapPoint& p : map.points) target += p.world;
+    target /= static_cast<double>(map.points.size());
   }
   const double range = std::max((target - cameras).norm(), 1e-3);
   const Eigen::Vector3d back = (cameras - target).normalized();
-  const Eigen::Vector3d up = -aToWorld.rotation().col(1);  // camera A's image up
-  const Eigen::Vector3d side = (cB - cA).normalized();
+  const Eigen::Vector3d up = -firstToWorld.rotation().col(1);  // the first reference's image up
+  Eigen::Vector3d side = map.views.back().T.cameraCentre() - map.views.front().T.cameraCentre();
+  side = side.norm() > 1e-9 ? side.normalized() : Eigen::Vector3d(firstToWorld.rotation().col(0));
   const Eigen::Vector3d eye = cameras + range * (0.9 * back + 0.7 * up - 0.6 * side);
   const VirtualCamera view =
       lookAt(eye, 0.5 * (target + cameras), up, 0.9 * bottom.cols * 0.5, bottom.size());
-  for (size_t i = 0; i < world.size(); ++i)
-    if (const auto p = view.project(world[i]))
+  for (std::size_t i = 0; i < map.points.size(); ++i)
+    if (const auto p = view.project(map.points[i].world))
       cv::circle(bottom, *p, 3, depthColour(depths[i], zLo, zHi), cv::FILLED, cv::LINE_AA);
-  drawFrustum(bottom, view, map, map.T_A, 0.25 * range, cv::Scalar(80, 220, 80), "A");
-  drawFrustum(bottom, view, map, map.T_B, 0.25 * range, cv::Scalar(80, 160, 255), "B");
-  drawLine(bottom, view, cA, cB, cv::Scalar(200, 200, 200));
-  char stats[160];
+  for (int v = 0; v < n; ++v)
+    drawFrustum(bottom, view, map.camera, map.views[static_cast<std::size_t>(v)].T, 0.25 * range,
+                referenceColour(v), std::to_string(v));
+  for (int v = 0; v + 1 < n; ++v)
+    drawLine(bottom, view, map.views[static_cast<std::size_t>(v)].T.cameraCentre(),
+             map.views[static_cast<std::size_t>(v) + 1].T.cameraCentre(),
+             cv::Scalar(200, 200, 200));
+  std::vector<int> histogram(static_cast<std::size_t>(n) + 1, 0);
+  for (const MapPoint& p : map.points) ++histogram[p.observations.size()];
+  std::ostringstream seen;
+  for (int k = 2; k <= n; ++k)
+    if (histogram[static_cast<std::size_t>(k)] > 0)
+      seen << " " << histogram[static_cast<std::size_t>(k)] << "x" << k;
+  char stats[200];
   std::snprintf(stats, sizeof(stats),
-                "%zu 3D points (depth in A %.2f..%.2f m, blue..red), baseline %.0f mm",
-                map.matches.size(), depths.empty() ? 0.0 : zLo, depths.empty() ? 0.0 : zHi,
-                (cA - cB).norm() * 1000.0);
+                "%zu 3D points (depth in their first reference %.2f..%.2f m, blue..red), %d "
+                "references",
+                map.points.size(), zLo, zHi, n);
   label(bottom, stats, {10, 22});
-  label(bottom, map.poseSource, {10, 46});
+  label(bottom, "seen by (points x references):" + seen.str() + "   " + map.poseSource, {10, 46});
   return picture;
+}
+
+cv::Mat drawMapPicture(const ReferenceMap& map) {
+  map.check();
+  return drawMapPicture(MultiReferenceMap::fromPair(map));
 }
 
 }  // namespace reftrack::app

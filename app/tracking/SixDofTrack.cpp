@@ -13,6 +13,7 @@
 #include "engine/core/AtomicFile.hpp"
 #include "engine/core/Error.hpp"
 #include "engine/geometry/TumTrajectory.hpp"
+#include "engine/reference/MultiReferenceMap.hpp"
 #include "render/context/GlContext.hpp"
 
 namespace reftrack::app {
@@ -38,7 +39,8 @@ std::string csvHeader() {
 }  // namespace
 
 int runSixDofTrack(const SixDofTrackOptions& o) {
-  const ReferenceMap map = ReferenceMap::load(o.map);
+  // Any map version; the two-reference tracker runs on the first pair of references.
+  const ReferenceMap map = MultiReferenceMap::load(o.map).pair(0, 1);
   TrackerParams params = o.params.empty() ? TrackerParams{} : TrackerParams::load(o.params);
   params.mode = TrackingMode::SixDof;
   if (!o.motion.empty()) params.pose.motionModelFile = o.motion.string();

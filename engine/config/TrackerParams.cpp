@@ -23,6 +23,7 @@ void TrackerParams::check() const {
   homography.check();
   wideBaseline.check();
   pose.check();
+  relocalisation.check();
 }
 
 void TrackerParams::write(cv::FileStorage& fs) const {
@@ -50,6 +51,10 @@ void TrackerParams::write(cv::FileStorage& fs) const {
      << "pose"
      << "{";
   pose.write(fs);
+  fs << "}"
+     << "relocalisation"
+     << "{";
+  relocalisation.write(fs);
   fs << "}";
 }
 
@@ -64,6 +69,7 @@ void TrackerParams::read(const cv::FileNode& root) {
   homography.read(root["homography"]);
   wideBaseline.read(root["wide_baseline"]);
   pose.read(root["pose"]);
+  relocalisation.read(root["relocalisation"]);
 }
 
 TrackerParams TrackerParams::load(const std::filesystem::path& file) {

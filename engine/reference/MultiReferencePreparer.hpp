@@ -7,9 +7,12 @@
 // gates, warped NCC, Eq. 9/10). The pairwise matches are merged into multi-view points by
 // union-find over (reference, corner); a track holding two corners of one reference is
 // inconsistent and dropped. A point seen by two references keeps its pairwise triangulation; one
-// seen by 3+ is re-triangulated from all its corners (linear DLT, then Gauss-Newton on the
+// seen by 3+ is re-triangulated from all its measurements (its first reference's corner and the
+// correlation peaks the pairs found for it elsewhere; linear DLT, then Gauss-Newton on the
 // reprojection errors with Ceres) and loses, worst first, every observation reprojecting farther
-// than maxTrackReprojectionErrorPx. Bad input throws reftrack::Error naming the image or pair.
+// than maxTrackReprojectionErrorPx. Last, the keypoint layer for relocalisation is built
+// (buildReferenceKeypoints with params.relocalisation, unless disabled there). Bad input throws
+// reftrack::Error naming the image or pair.
 #include <functional>
 #include <optional>
 #include <string>
@@ -39,7 +42,7 @@ struct MultiPreparationReport {
   int droppedObservations = 0;            // reprojection error above the threshold after refinement
   int droppedPoints = 0;                  // fewer than two observations left, or behind a camera
   std::vector<int> observationHistogram;  // [k]: points seen by exactly k references
-  double multiViewRmsPx = 0.0;  // reprojection RMS of the 3+-view points against their corners
+  double multiViewRmsPx = 0.0;  // reprojection RMS of the 3+-view points (their measurements)
 };
 
 struct MultiPreparation {

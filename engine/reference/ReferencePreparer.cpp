@@ -67,6 +67,7 @@ void ReferencePreparerParams::check() const {
   requireIntInRange("preparation.min_pair_matches", minPairMatches, 1, 10000000);
   requireFiniteInRange("preparation.max_track_reprojection_error_px", maxTrackReprojectionErrorPx,
                        1e-3, 1e3);
+  relocalisation.check();
 }
 
 void ReferencePreparerParams::write(cv::FileStorage& fs) const {
@@ -86,7 +87,11 @@ void ReferencePreparerParams::write(cv::FileStorage& fs) const {
      << "{"
      << "min_baseline_m" << minBaselineMetres << "min_matches" << minMatches
      << "max_pair_view_angle_deg" << maxPairViewAngleDeg << "min_pair_matches" << minPairMatches
-     << "max_track_reprojection_error_px" << maxTrackReprojectionErrorPx << "}";
+     << "max_track_reprojection_error_px" << maxTrackReprojectionErrorPx << "}"
+     << "relocalisation"
+     << "{";
+  relocalisation.write(fs);
+  fs << "}";
 }
 
 void ReferencePreparerParams::read(const cv::FileNode& root) {
@@ -102,6 +107,7 @@ void ReferencePreparerParams::read(const cv::FileNode& root) {
   readConfigValue(root["preparation"], "preparation", "min_pair_matches", minPairMatches);
   readConfigValue(root["preparation"], "preparation", "max_track_reprojection_error_px",
                   maxTrackReprojectionErrorPx);
+  relocalisation.read(root["relocalisation"]);
   check();
 }
 

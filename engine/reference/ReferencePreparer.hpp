@@ -10,6 +10,7 @@
 #include <string>
 
 #include "engine/config/CornerParams.hpp"
+#include "engine/config/RelocalisationParams.hpp"
 #include "engine/features/Corner.hpp"
 #include "engine/geometry/PinholeCamera.hpp"
 #include "engine/geometry/RigidPose.hpp"
@@ -51,11 +52,16 @@ struct ReferencePreparerParams {
   // (matching.max_peak_offset_px 1.5 between B's corner and the peak it triangulated from, plus
   // matching.max_reprojection_error_px 1.0) admit a corner up to 2.5 px from its point.
   double maxTrackReprojectionErrorPx = 2.5;
+  // The keypoint layer an N-reference map carries for relocalisation (buildReferenceKeypoints;
+  // section `relocalisation`, as in the tracking parameters, whose keypoints must be the same
+  // kind). enabled: false leaves the layer out. The two-reference preparation ignores it.
+  RelocalisationParams relocalisation;
 
-  void check() const;                     // throws reftrack::Error naming the bad field
-  void write(cv::FileStorage& fs) const;  // sections corners, matching, marker, preparation
-  void read(const cv::FileNode& root);    // missing keys keep their value; then check()
-  std::string toYaml() const;             // the whole set as YAML text (ReferenceMap's record)
+  void check() const;  // throws reftrack::Error naming the bad field
+  // Sections corners, matching, marker, preparation, relocalisation.
+  void write(cv::FileStorage& fs) const;
+  void read(const cv::FileNode& root);  // missing keys keep their value; then check()
+  std::string toYaml() const;           // the whole set as YAML text (ReferenceMap's record)
   // Throws reftrack::Error naming the file and the key at fault.
   static ReferencePreparerParams load(const std::filesystem::path& file);
 };

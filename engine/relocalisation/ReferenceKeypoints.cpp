@@ -37,8 +37,8 @@ void ReferenceKeypoints::write(cv::FileStorage& fs, const std::string& name) con
   cv::Mat pts(static_cast<int>(points.size()), 3, CV_64F);
   for (int i = 0; i < kp.rows; ++i) {
     const cv::KeyPoint& k = keypoints[static_cast<std::size_t>(i)];
-    const float row[6] = {k.pt.x, k.pt.y, k.size, k.angle, k.response,
-                          static_cast<float>(k.octave)};
+    const float row[6] = {k.pt.x,  k.pt.y,     k.size,
+                          k.angle, k.response, static_cast<float>(k.octave)};
     for (int c = 0; c < 6; ++c) kp.at<float>(i, c) = row[c];
     for (int c = 0; c < 3; ++c) pts.at<double>(i, c) = points[static_cast<std::size_t>(i)][c];
   }

@@ -12,7 +12,7 @@ namespace reftrack {
 
 struct ReferenceKeypoints {
   std::vector<cv::KeyPoint> keypoints;
-  cv::Mat descriptors;                 // one row per keypoint (CV_8U binary or CV_32F)
+  cv::Mat descriptors;                  // one row per keypoint (CV_8U binary or CV_32F)
   std::vector<Eigen::Vector3d> points;  // world frame, one per keypoint; NaN where none
 
   bool empty() const { return keypoints.empty(); }

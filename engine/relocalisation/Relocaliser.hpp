@@ -13,6 +13,7 @@
 #include "engine/config/RelocalisationParams.hpp"
 #include "engine/geometry/RigidPose.hpp"
 #include "engine/reference/MultiReferenceMap.hpp"
+#include "engine/relocalisation/ReferenceKeypointBuilder.hpp"  // buildReferenceKeypoints
 
 namespace reftrack {
 
@@ -30,17 +31,16 @@ struct RelocalisationAttempt {
   double ms = 0.0;
 };
 
-// Builds the keypoint layer of every view of `map` (detect, describe, triangulate each keypoint
-// from the views that see it under the known poses); replaces views[i].keypoints and keypointKind.
-void buildReferenceKeypoints(MultiReferenceMap& map, const RelocalisationParams& params);
-
 class Relocaliser {
  public:
   // Uses the map's stored keypoint layers (throws reftrack::Error when they are missing or were
   // made with another detector than params.keypoints).
   Relocaliser(const MultiReferenceMap& map, const RelocalisationParams& params);
   ~Relocaliser();
-  RelocalisationAttempt locate(const cv::Mat& frame) const;  // BGR or grey, the map's size
+  // BGR or grey, the map's size (else reftrack::Error); a frame without enough support (black,
+  // textureless, another scene) gives no candidate and says why in the message.
+  RelocalisationAttempt locate(const cv::Mat& frame) const;
+  const PinholeCamera& camera() const;
 
  private:
   struct Impl;

@@ -14,6 +14,8 @@
 #include "app/simulator/SceneSimulator.hpp"
 #include "app/simulator/SimulationWriter.hpp"
 #include "engine/geometry/PinholeCamera.hpp"
+#include "engine/geometry/TumTrajectory.hpp"
+#include "engine/reference/MultiReferenceMap.hpp"
 #include "engine/reference/ReferenceMap.hpp"
 #include "engine/reference/ReferencePreparer.hpp"
 #include "render/context/GlContext.hpp"
@@ -72,6 +74,13 @@ class PrepareCommandTest : public ::testing::Test {
     depthA_ = new cv::Mat(sim.renderDepth(sim.referencePoseA()));
     truthA_ = new RigidPose(sim.referencePoseA());
     truthB_ = new RigidPose(sim.referencePoseB());
+    // A third reference for the N-reference tests: A's orientation, between A and B and 10 cm
+    // higher (image up), as `reftrack simulate` renders its references (same sensor noise).
+    const Eigen::Matrix3d R = truthA_->rotation();
+    const Eigen::Vector3d centre =
+        0.5 * (truthA_->cameraCentre() + truthB_->cameraCentre()) - 0.1 * R.row(1).transpose();
+    truthC_ = new RigidPose(R, -R * centre);
+    cv::imwrite((*dir_ / "reference_c.png").string(), sim.renderView(*truthC_, 77, o.noiseSigma));
     marker_ = new MarkerSpec(sim.marker());
   }
   static void TearDownTestSuite() {
@@ -79,6 +88,7 @@ class PrepareCommandTest : public ::testing::Test {
     delete depthA_;
     delete truthA_;
     delete truthB_;
+    delete truthC_;
     delete marker_;
   }
   static std::string commonArgs(const fs::path& out) {
@@ -101,13 +111,14 @@ class PrepareCommandTest : public ::testing::Test {
   }
   static fs::path* dir_;
   static cv::Mat* depthA_;
-  static RigidPose *truthA_, *truthB_;
+  static RigidPose *truthA_, *truthB_, *truthC_;
   static MarkerSpec* marker_;
 };
 fs::path* PrepareCommandTest::dir_ = nullptr;
 cv::Mat* PrepareCommandTest::depthA_ = nullptr;
 RigidPose* PrepareCommandTest::truthA_ = nullptr;
 RigidPose* PrepareCommandTest::truthB_ = nullptr;
+RigidPose* PrepareCommandTest::truthC_ = nullptr;
 MarkerSpec* PrepareCommandTest::marker_ = nullptr;
 
 }  // namespace
@@ -120,7 +131,7 @@ TEST_F(PrepareCommandTest, MarkerPosesAndTriangulatedPointsMatchTheSimulatorsGro
   std::cout << run.out;
   EXPECT_NE(run.out.find("marker corner reprojection RMS"), std::string::npos);
   EXPECT_NE(run.out.find("dropped:"), std::string::npos);
-  const ReferenceMap map = ReferenceMap::load(out);
+  const ReferenceMap map = MultiReferenceMap::load(out).pair(0, 1);
 
   // Marker poses: 2 mm and 0.1 degree at 640x480 (the bar).
   for (const auto& [estimate, truth, name] :
@@ -188,7 +199,7 @@ TEST_F(PrepareCommandTest, KnownPosesFromATumFileGiveTheSamePoses) {
   const CommandRun run = runReftrack(
       commonArgs(out) + " --poses " + (*dir_ / "references.txt").string(), out.parent_path());
   ASSERT_EQ(run.exitCode, 0) << run.err;
-  const ReferenceMap map = ReferenceMap::load(out);
+  const ReferenceMap map = MultiReferenceMap::load(out).pair(0, 1);
   // references.txt holds the exact poses at 17 significant digits: only round-off remains.
   EXPECT_LT(RigidPose::translationDistance(map.T_A, *truthA_), 1e-9);
   EXPECT_LT(RigidPose::rotationDistance(map.T_B, *truthB_), 1e-9);
@@ -275,4 +286,91 @@ TEST_F(PrepareCommandTest, PoseSourceIsRequiredExactlyOnce) {
   const CommandRun badMarker =
       runReftrack(commonArgs(scratch / "map") + " --marker DICT_6X6_250:x:0.2", scratch);
   EXPECT_EQ(badMarker.exitCode, 2) << badMarker.err;
+}
+
+TEST_F(PrepareCommandTest, ThreeReferencesFromAFolderGiveAVersionTwoMap) {
+  const fs::path scratch = test::freshTempDir("PrepareCommand_three");
+  fs::create_directories(scratch / "refs");
+  // Sorted by name: 0 = A, 1 = B, 2 = C, as the pose file lists them.
+  fs::copy_file(*dir_ / "reference_a.png", scratch / "refs" / "ref_0.png");
+  fs::copy_file(*dir_ / "reference_b.png", scratch / "refs" / "ref_1.png");
+  fs::copy_file(*dir_ / "reference_c.png", scratch / "refs" / "ref_2.png");
+  TumTrajectory poses;
+  for (const RigidPose* T : {truthA_, truthB_, truthC_})
+    poses.poses.push_back({static_cast<double>(poses.poses.size()), *T});
+  poses.save(scratch / "poses.txt");
+  const fs::path out = scratch / "map";
+  const CommandRun run =
+      runReftrack("prepare --camera " + (*dir_ / "camera.yml").string() + " --refs " +
+                      (scratch / "refs").string() + " --poses " + (scratch / "poses.txt").string() +
+                      " --out " + out.string(),
+                  scratch);
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  std::cout << run.out;
+  for (const char* pair : {"pair 0-1", "pair 0-2", "pair 1-2"})
+    EXPECT_NE(run.out.find(pair), std::string::npos) << pair;
+  EXPECT_NE(run.out.find("format version 2, 3 references"), std::string::npos);
+  const MultiReferenceMap map = MultiReferenceMap::load(out);
+  ASSERT_EQ(map.size(), 3);
+  EXPECT_LT(RigidPose::translationDistance(map.views[2].T, *truthC_), 1e-9);
+  // The keypoint layer for relocalisation came through the YAML round trip.
+  EXPECT_EQ(map.keypointKind, "orb");
+  for (const ReferenceView& v : map.views) EXPECT_GT(v.keypoints.pointCount(), 100) << v.name;
+  // Depth along A's ray through A's corner against the true surface, for every point A sees;
+  // separately for the points seen by 2 and by 3 references.
+  int seenBy3 = 0, wrong = 0, n = 0, n3 = 0;
+  double depthSq = 0.0, depthSq3 = 0.0;
+  for (const MapPoint& p : map.points) {
+    const bool three = p.observations.size() >= 3;
+    seenBy3 += three ? 1 : 0;
+    for (const PointObservation& o : p.observations) {
+      if (o.view != 0) continue;
+      const cv::Point2f pA = map.views[0].corners[static_cast<std::size_t>(o.corner)].pixel;
+      const double err = ((map.views[0].T * p.world).z() - bilinear(*depthA_, pA)) * 1000.0;
+      if (std::abs(err) > 30.0) {  // wrong matches: as in the two-reference test above
+        ++wrong;
+        continue;
+      }
+      depthSq += err * err;
+      ++n;
+      if (three) {
+        depthSq3 += err * err;
+        ++n3;
+      }
+    }
+  }
+  ASSERT_GT(n, 300);
+  ASSERT_GT(n3, 0);
+  const double depthRmsMm = std::sqrt(depthSq / n), depthRms3Mm = std::sqrt(depthSq3 / n3);
+  std::cout << map.points.size() << " points, " << seenBy3 << " seen by 3 references; depth RMS "
+            << depthRmsMm << " mm over the " << n << " A sees (" << depthRms3Mm << " mm over the "
+            << n3 << " seen by 3, " << std::sqrt((depthSq - depthSq3) / (n - n3))
+            << " mm over the others), " << wrong << " wrong\n";
+  EXPECT_GT(seenBy3, 100);
+  EXPECT_LE(wrong, n / 50);
+  EXPECT_LT(depthRmsMm, 3.0);   // the two-reference bar (3 mm at about 1 m)
+  EXPECT_LT(depthRms3Mm, 3.0);  // and as good for the points seen by 3 references
+}
+
+TEST_F(PrepareCommandTest, ReferenceCountAndPoseCountMustAgree) {
+  const fs::path scratch = test::freshTempDir("PrepareCommand_counts");
+  const std::string base = "prepare --camera " + (*dir_ / "camera.yml").string() + " --out " +
+                           (scratch / "map").string() + " --ref " +
+                           (*dir_ / "reference_a.png").string();
+  const CommandRun one = runReftrack(base + " --marker " + marker_->toString(), scratch);
+  EXPECT_EQ(one.exitCode, 2) << one.err;
+  EXPECT_NE(one.err.find("at least 2"), std::string::npos) << one.err;
+  const CommandRun mismatch = runReftrack(base + " --ref " + (*dir_ / "reference_b.png").string() +
+                                              " --ref " + (*dir_ / "reference_c.png").string() +
+                                              " --poses " + (*dir_ / "references.txt").string(),
+                                          scratch);
+  EXPECT_EQ(mismatch.exitCode, 2) << mismatch.err;
+  EXPECT_NE(mismatch.err.find("2 pose(s) for 3 reference images"), std::string::npos)
+      << mismatch.err;
+  const CommandRun mixed =
+      runReftrack(base + " --ref-a " + (*dir_ / "reference_a.png").string() + " --ref-b " +
+                      (*dir_ / "reference_b.png").string() + " --marker " + marker_->toString(),
+                  scratch);
+  EXPECT_EQ(mixed.exitCode, 2) << mixed.err;
+  EXPECT_FALSE(fs::exists(scratch / "map" / MultiReferenceMap::kFileName));
 }

@@ -27,6 +27,8 @@ TEST(TrackerParams, SaveLoadRoundTripsEverySection) {
   in.homography.guidedSearchHalfSizePx = 5;
   in.wideBaseline.dx = 12;
   in.pose.estimator = PoseEstimatorKind::Standard;
+  in.relocalisation.keypoints = "akaze";
+  in.relocalisation.minInliers = 31;
   in.save(dir / "params.yml");
   const TrackerParams out = TrackerParams::load(dir / "params.yml");
   EXPECT_EQ(out.mode, TrackingMode::Homography);
@@ -36,6 +38,8 @@ TEST(TrackerParams, SaveLoadRoundTripsEverySection) {
   EXPECT_DOUBLE_EQ(out.homography.guidedSearchHalfSizePx, 5);
   EXPECT_EQ(out.wideBaseline.dx, 12);
   EXPECT_EQ(out.pose.estimator, PoseEstimatorKind::Standard);
+  EXPECT_EQ(out.relocalisation.keypoints, "akaze");
+  EXPECT_EQ(out.relocalisation.minInliers, 31);
   // Only the final file remains (atomic write leaves no temporary behind).
   EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir),
                           std::filesystem::directory_iterator()),
@@ -65,6 +69,12 @@ TEST(TrackerParams, ErrorsNameFileAndKey) {
   EXPECT_NE(bad("range.yml", "ransac:\n  min_inlier_ratio: 3\n").find("ransac.min_inlier_ratio"),
             std::string::npos);
   EXPECT_NE(bad("section.yml", "pose: 3\n").find("'pose'"), std::string::npos);
+  EXPECT_NE(
+      bad("reloc.yml", "relocalisation:\n  min_inliers: 2\n").find("relocalisation.min_inliers"),
+      std::string::npos);
+  EXPECT_NE(
+      bad("kind.yml", "relocalisation:\n  keypoints: brisk\n").find("relocalisation.keypoints"),
+      std::string::npos);
   EXPECT_NE(bad("range.yml", "ransac:\n  min_inlier_ratio: 3\n").find("range.yml"),
             std::string::npos);
   EXPECT_NE(errorMessage([&] { TrackerParams::load(dir / "absent.yml"); }).find("does not exist"),

@@ -1,0 +1,35 @@
+#pragma once
+// KeypointFeatures: the viewpoint-invariant keypoints of the relocalisation layer (issue 13) —
+// one detector + descriptor by name (orb | akaze | sift, OpenCV features2d), a cap on the number
+// kept (the strongest), and descriptor matching with Lowe's ratio test and a mutual check.
+#include <opencv2/core.hpp>
+#include <opencv2/features2d.hpp>
+#include <string>
+#include <vector>
+
+namespace reftrack {
+
+class KeypointFeatures {
+ public:
+  // Throws reftrack::Error for an unknown kind (the accepted names are listed).
+  explicit KeypointFeatures(const std::string& kind);
+
+  const std::string& kind() const { return kind_; }
+  int normType() const;  // cv::NORM_HAMMING (orb, akaze) or cv::NORM_L2 (sift)
+
+  // Detects and describes at most `maxKeypoints` keypoints (the strongest) of an 8-bit grey or
+  // BGR image. Descriptors: one row per keypoint.
+  void detectAndDescribe(const cv::Mat& image, int maxKeypoints,
+                         std::vector<cv::KeyPoint>& keypoints, cv::Mat& descriptors) const;
+
+ private:
+  std::string kind_;
+};
+
+// For each query row, its nearest train row when it passes the ratio test (nearest < ratio *
+// second nearest); with `mutual`, also only when that train row's nearest query row (under the
+// same ratio test) is the query row itself. queryIdx/trainIdx index the two descriptor sets.
+std::vector<cv::DMatch> matchDescriptors(const cv::Mat& query, const cv::Mat& train, int normType,
+                                         double ratio, bool mutual);
+
+}  // namespace reftrack

@@ -1,0 +1,307 @@
+#include "engine/relocalisation/Relocaliser.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <numeric>
+#include <opencv2/calib3d.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "engine/config/ResolutionScale.hpp"
+#include "engine/core/Error.hpp"
+#include "engine/relocalisation/KeypointFeatures.hpp"
+
+namespace reftrack {
+
+namespace {
+
+// Retrieval votes with the strongest this many frame keypoints only: enough to rank the
+// references (each gets its ratio-test match count), a quarter of the cost of matching all.
+constexpr int kRetrievalKeypoints = 250;
+// The inlier spread is counted on a kSpreadGrid x kSpreadGrid grid over the frame.
+constexpr int kSpreadGrid = 4;
+
+struct IndexedReference {
+  int view = -1;
+  cv::Mat descriptors;              // rows of the keypoints that have a 3D point
+  std::vector<cv::Point3f> points;  // their world points
+};
+
+RigidPose poseFrom(const cv::Mat& rvec, const cv::Mat& tvec) {
+  Vector6d x;
+  x << tvec.at<double>(0), tvec.at<double>(1), tvec.at<double>(2), rvec.at<double>(0),
+      rvec.at<double>(1), rvec.at<double>(2);
+  return RigidPose::fromVector6(x);
+}
+
+// How well the inliers pin the pose down: the standard deviations of the pose from the
+// Gauss-Newton covariance sigma^2 (J^T J)^-1 of the reprojection residuals (J over rvec, tvec),
+// with sigma the inliers' residual RMS (at least 1 px: keypoints are no better located). A pose
+// held up by a small, distant patch of the scene has a large one even with many inliers.
+struct PoseSpread {
+  double rotationDeg = 0.0;        // largest rotation standard deviation
+  double positionOverDepth = 0.0;  // largest translation standard deviation / median depth
+};
+
+PoseSpread poseSpread(const std::vector<cv::Point3f>& object, const std::vector<cv::Point2f>& image,
+                      const std::vector<int>& inliers, const cv::Mat& rvec, const cv::Mat& tvec,
+                      const cv::Mat& K, const cv::Mat& distortion) {
+  PoseSpread out;
+  if (inliers.size() < 4) return {1e9, 1e9};
+  std::vector<cv::Point3f> obj;
+  std::vector<cv::Point2f> img;
+  for (int i : inliers) {
+    obj.push_back(object[static_cast<std::size_t>(i)]);
+    img.push_back(image[static_cast<std::size_t>(i)]);
+  }
+  std::vector<cv::Point2f> back;
+  cv::Mat J;
+  cv::projectPoints(obj, rvec, tvec, K, distortion, back, J);
+  double sum2 = 0.0;
+  for (std::size_t i = 0; i < img.size(); ++i) sum2 += std::pow(cv::norm(back[i] - img[i]), 2);
+  const double sigma = std::max(1.0, std::sqrt(sum2 / static_cast<double>(img.size())));
+  const cv::Mat Jpose = J.colRange(0, 6);
+  cv::Mat covariance;
+  if (cv::invert(Jpose.t() * Jpose, covariance, cv::DECOMP_SVD) == 0) return {1e9, 1e9};
+  covariance *= sigma * sigma;
+  cv::Mat eigen;
+  cv::eigen(covariance(cv::Range(0, 3), cv::Range(0, 3)), eigen);
+  out.rotationDeg = std::sqrt(std::max(0.0, eigen.at<double>(0))) * 180.0 / M_PI;
+  cv::eigen(covariance(cv::Range(3, 6), cv::Range(3, 6)), eigen);
+  cv::Mat R;
+  cv::Rodrigues(rvec, R);
+  std::vector<double> depth;
+  for (const cv::Point3f& X : obj)
+    depth.push_back(R.at<double>(2, 0) * X.x + R.at<double>(2, 1) * X.y + R.at<double>(2, 2) * X.z +
+                    tvec.at<double>(2));
+  std::nth_element(depth.begin(), depth.begin() + static_cast<long>(depth.size() / 2), depth.end());
+  const double medianDepth = depth[depth.size() / 2];
+  out.positionOverDepth =
+      medianDepth > 0 ? std::sqrt(std::max(0.0, eigen.at<double>(0))) / medianDepth : 1e9;
+  return out;
+}
+
+}  // namespace
+
+struct Relocaliser::Impl {
+  RelocalisationParams params;
+  PinholeCamera camera;
+  KeypointFeatures features;
+  std::vector<IndexedReference> references;
+  cv::Mat K, distortion;
+
+  Impl(const MultiReferenceMap& map, const RelocalisationParams& p)
+      : params(p), camera(map.camera), features(p.keypoints) {}
+
+  struct Match {
+    int reference = -1;  // index into references
+    int point = -1;
+    float distance = 0.0f;
+  };
+
+  // The references to match: all when there are few, else the best-voted ones.
+  std::vector<int> retrieve(const std::vector<cv::KeyPoint>& keypoints,
+                            const cv::Mat& descriptors) const;
+  RelocalisationAttempt locate(const cv::Mat& frame) const;
+};
+
+Relocaliser::Relocaliser(const MultiReferenceMap& map, const RelocalisationParams& params) {
+  params.check();
+  impl_ = std::make_unique<Impl>(map, params);
+  if (map.keypointKind.empty())
+    throw Error("relocalisation: the map has no keypoint layer (prepare it again)");
+  if (map.keypointKind != params.keypoints)
+    throw Error("relocalisation: the map's keypoints are '" + map.keypointKind +
+                "' but relocalisation.keypoints is '" + params.keypoints +
+                "' (prepare the map again with these parameters)");
+  for (int v = 0; v < map.size(); ++v) {
+    const ReferenceKeypoints& layer = map.views[static_cast<std::size_t>(v)].keypoints;
+    layer.check("views[" + std::to_string(v) + "].keypoints");
+    IndexedReference r;
+    r.view = v;
+    for (std::size_t k = 0; k < layer.keypoints.size(); ++k) {
+      if (!layer.points[k].allFinite()) continue;
+      r.descriptors.push_back(layer.descriptors.row(static_cast<int>(k)));
+      r.points.emplace_back(static_cast<float>(layer.points[k].x()),
+                            static_cast<float>(layer.points[k].y()),
+                            static_cast<float>(layer.points[k].z()));
+    }
+    if (static_cast<int>(r.points.size()) >= params.minInliers)
+      impl_->references.push_back(std::move(r));
+  }
+  if (impl_->references.empty())
+    throw Error("relocalisation: no reference of the map has a keypoint layer with " +
+                std::to_string(params.minInliers) + " or more 3D points");
+  cv::Mat(camera().Kcv()).copyTo(impl_->K);
+  impl_->distortion = cv::Mat(impl_->camera.distortion(), true);
+}
+
+Relocaliser::~Relocaliser() = default;
+
+const PinholeCamera& Relocaliser::camera() const { return impl_->camera; }
+
+RelocalisationAttempt Relocaliser::locate(const cv::Mat& frame) const {
+  const auto start = std::chrono::steady_clock::now();
+  RelocalisationAttempt attempt = impl_->locate(frame);
+  attempt.ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return attempt;
+}
+
+std::vector<int> Relocaliser::Impl::retrieve(const std::vector<cv::KeyPoint>& keypoints,
+                                             const cv::Mat& descriptors) const {
+  std::vector<int> all(references.size());
+  std::iota(all.begin(), all.end(), 0);
+  if (static_cast<int>(references.size()) <= params.referencesToMatch) return all;
+  // The strongest frame keypoints vote: a reference scores its ratio-test matches.
+  std::vector<int> order(keypoints.size());
+  std::iota(order.begin(), order.end(), 0);
+  const std::size_t voters = std::min<std::size_t>(order.size(), kRetrievalKeypoints);
+  std::partial_sort(order.begin(), order.begin() + static_cast<long>(voters), order.end(),
+                    [&](int a, int b) {
+                      return keypoints[static_cast<std::size_t>(a)].response >
+                             keypoints[static_cast<std::size_t>(b)].response;
+                    });
+  cv::Mat voting;
+  for (std::size_t i = 0; i < voters; ++i) voting.push_back(descriptors.row(order[i]));
+  std::vector<std::size_t> votes(references.size(), 0);
+  for (std::size_t r = 0; r < references.size(); ++r)
+    votes[r] = matchDescriptors(voting, references[r].descriptors, features.normType(),
+                                params.ratio, false)
+                   .size();
+  std::stable_sort(all.begin(), all.end(), [&](int a, int b) {
+    return votes[static_cast<std::size_t>(a)] > votes[static_cast<std::size_t>(b)];
+  });
+  all.resize(static_cast<std::size_t>(params.referencesToMatch));
+  return all;
+}
+
+RelocalisationAttempt Relocaliser::Impl::locate(const cv::Mat& frame) const {
+  const cv::Size size = camera.imageSize();
+  if (frame.empty()) throw Error("relocalisation: empty frame");
+  if (frame.size() != size)
+    throw Error("relocalisation: frame is " + std::to_string(frame.cols) + "x" +
+                std::to_string(frame.rows) + " but the map's camera is " +
+                std::to_string(size.width) + "x" + std::to_string(size.height));
+  if (frame.depth() != CV_8U || (frame.channels() != 1 && frame.channels() != 3))
+    throw Error("relocalisation: frame must be 8-bit grey or BGR");
+
+  RelocalisationAttempt out;
+  std::vector<cv::KeyPoint> keypoints;
+  cv::Mat descriptors;
+  features.detectAndDescribe(frame, params.featuresPerFrameFor(size), keypoints, descriptors);
+  if (static_cast<int>(keypoints.size()) < params.minInliers) {
+    out.message = "too few keypoints (" + std::to_string(keypoints.size()) +
+                  "): black, textureless or blurred frame";
+    return out;
+  }
+
+  // 2D-3D matches: each frame keypoint keeps its closest ratio-test match over the references.
+  std::vector<Match> best(keypoints.size());
+  for (int r : retrieve(keypoints, descriptors))
+    for (const cv::DMatch& m :
+         matchDescriptors(descriptors, references[static_cast<std::size_t>(r)].descriptors,
+                          features.normType(), params.ratio, false)) {
+      Match& b = best[static_cast<std::size_t>(m.queryIdx)];
+      if (b.reference < 0 || m.distance < b.distance) b = {r, m.trainIdx, m.distance};
+    }
+  std::vector<cv::Point3f> object;
+  std::vector<cv::Point2f> image;
+  std::vector<int> matchReference;
+  for (std::size_t k = 0; k < best.size(); ++k) {
+    if (best[k].reference < 0) continue;
+    object.push_back(references[static_cast<std::size_t>(best[k].reference)]
+                         .points[static_cast<std::size_t>(best[k].point)]);
+    image.push_back(keypoints[k].pt);
+    matchReference.push_back(best[k].reference);
+  }
+  const int matches = static_cast<int>(object.size());
+  if (matches < params.minInliers) {
+    out.message = "too few matches with the map (" + std::to_string(matches) + " < " +
+                  std::to_string(params.minInliers) + ")";
+    return out;
+  }
+
+  // PnP-RANSAC (AP3P minimal solver), then Levenberg-Marquardt on the inliers. Measured against
+  // P3P, SQPnP (EPnP samples) and USAC MAGSAC++ (cv::UsacParams): the same views relocalised
+  // (39/40 synthetic, 161/161 postcard) with centre errors within 0.2 mm of each other, and the
+  // RANSAC stage is 0.4-6 ms of an attempt, the times of all four within the run-to-run noise.
+  const double threshold = params.reprojectionPx * resolutionScale(size);
+  cv::Mat rvec, tvec;
+  std::vector<int> ransacInliers;
+  const bool found =
+      cv::solvePnPRansac(object, image, K, distortion, rvec, tvec, false, params.ransacIterations,
+                         static_cast<float>(threshold), 0.999, ransacInliers, cv::SOLVEPNP_AP3P);
+  if (!found || static_cast<int>(ransacInliers.size()) < params.minInliers) {
+    out.message = "PnP-RANSAC found no pose with " + std::to_string(params.minInliers) +
+                  " inliers (" + std::to_string(ransacInliers.size()) + " of " +
+                  std::to_string(matches) + " matches)";
+    return out;
+  }
+  // Refine on the inliers, re-select the inliers under the refined pose, refine once more.
+  std::vector<int> inliers = ransacInliers;
+  std::vector<double> errors(object.size());
+  for (int pass = 0; pass < 2; ++pass) {
+    std::vector<cv::Point3f> obj;
+    std::vector<cv::Point2f> img;
+    for (int i : inliers) {
+      obj.push_back(object[static_cast<std::size_t>(i)]);
+      img.push_back(image[static_cast<std::size_t>(i)]);
+    }
+    cv::solvePnPRefineLM(obj, img, K, distortion, rvec, tvec);
+    std::vector<cv::Point2f> back;
+    cv::projectPoints(object, rvec, tvec, K, distortion, back);
+    const RigidPose T = poseFrom(rvec, tvec);
+    inliers.clear();
+    for (std::size_t i = 0; i < object.size(); ++i) {
+      const Eigen::Vector3d X(object[i].x, object[i].y, object[i].z);
+      errors[i] = (T * X).z() > 0 ? cv::norm(back[i] - image[i]) : 1e9;
+      if (errors[i] < threshold) inliers.push_back(static_cast<int>(i));
+    }
+    if (static_cast<int>(inliers.size()) < params.minInliers) break;
+  }
+
+  // Acceptance: enough inliers, a large enough share of the matches, spread over the frame.
+  const int n = static_cast<int>(inliers.size());
+  std::vector<int> perReference(references.size(), 0);
+  std::vector<bool> cells(kSpreadGrid * kSpreadGrid, false);
+  double sum2 = 0.0;
+  for (int i : inliers) {
+    const auto u = static_cast<std::size_t>(i);
+    ++perReference[static_cast<std::size_t>(matchReference[u])];
+    const int cx =
+        std::clamp(static_cast<int>(image[u].x * kSpreadGrid / size.width), 0, kSpreadGrid - 1);
+    const int cy =
+        std::clamp(static_cast<int>(image[u].y * kSpreadGrid / size.height), 0, kSpreadGrid - 1);
+    cells[static_cast<std::size_t>(cy * kSpreadGrid + cx)] = true;
+    sum2 += errors[u] * errors[u];
+  }
+  const int covered = static_cast<int>(std::count(cells.begin(), cells.end(), true));
+  const PoseSpread spread = poseSpread(object, image, inliers, rvec, tvec, K, distortion);
+  const double ratio = static_cast<double>(n) / matches;
+  char spreadText[96];
+  std::snprintf(spreadText, sizeof spreadText, ", pose sigma %.2f deg, %.2f%% of the depth",
+                spread.rotationDeg, 100.0 * spread.positionOverDepth);
+  const std::string support = std::to_string(n) + " inliers of " + std::to_string(matches) +
+                              " matches, " + std::to_string(covered) + " grid cells" + spreadText;
+  const RigidPose pose = poseFrom(rvec, tvec);
+  if (n < params.minInliers || ratio < params.minInlierRatio || covered < params.minInlierCells ||
+      !pose.allFinite() || !(spread.rotationDeg <= params.maxRotationSigmaDeg) ||
+      !(spread.positionOverDepth <= params.maxPositionSigmaRatio)) {
+    out.message = "not enough support (" + support + ")";
+    return out;
+  }
+  RelocalisationCandidate c;
+  c.worldToCamera = pose;
+  const auto bestRef = std::max_element(perReference.begin(), perReference.end());
+  c.reference = references[static_cast<std::size_t>(bestRef - perReference.begin())].view;
+  c.inliers = n;
+  c.matches = matches;
+  c.reprojectionRmsPx = std::sqrt(sum2 / n);
+  out.candidate = c;
+  out.message = "relocalised on reference " + std::to_string(c.reference) + " (" + support + ")";
+  return out;
+}
+
+}  // namespace reftrack
