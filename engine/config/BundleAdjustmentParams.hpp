@@ -1,0 +1,34 @@
+#pragma once
+// BundleAdjustmentParams (YAML section `bundle_adjustment`): the robust loss, the outlier figure
+// of the report and the gauge rule of ReferenceBundleAdjuster. Pixel figures are pixels of the
+// map's own images (as the preparation's), not scaled from 320x240.
+#include <opencv2/core.hpp>
+#include <string>
+
+namespace reftrack {
+
+struct BundleAdjustmentParams {
+  // Robust loss on each observation's reprojection error (pixels): cauchy | huber | none (plain
+  // least squares, for comparison). Both keep the quadratic cost of good (sub-pixel) corners up to
+  // lossScalePx; beyond it Cauchy's pull fades away while Huber's stays constant. Measured on the
+  // test's synthetic map (0.2 px noise, 10% of the added references' corners 10-40 px off, 2 cm /
+  // 1 degree start): Cauchy 1 px 0.10-0.27 mm, 0.011-0.023 degrees, 42 iterations; Huber 1 px
+  // 0.21 mm, 0.026 degrees, 100 iterations; least squares 2.0-7.6 mm, 0.23-0.44 degrees.
+  std::string loss = "cauchy";
+  double lossScalePx = 1.0;
+  // Observations whose final reprojection error exceeds this are counted as outliers in the
+  // report and left out of its RMS figures (they stay in the map).
+  double outlierThresholdPx = 3.0;
+  int maxIterations = 100;
+  // Gauge: a non-anchored reference is refined only when it sees at least this many points that
+  // two already determined references see (anchored ones first, then by closure): a pose has 6
+  // unknowns and each point gives 2 equations, so 8 points leave margin for a few outliers.
+  // Otherwise its pose (and scale) would float, and it is held where it is.
+  int minDeterminedPoints = 8;
+
+  void check() const;  // throws reftrack::Error naming the bad field (bundle_adjustment.key)
+  void write(cv::FileStorage& fs) const;
+  void read(const cv::FileNode& node);  // missing keys keep their value; then check()
+};
+
+}  // namespace reftrack
