@@ -39,8 +39,11 @@ TEST(ColdRegistrationExperiment, RegistersFirstFramesFromAnyViewToSubPixelAccura
   // 1.25 px (45-50 degrees, 1.5-1.75x), i.e. short of the 1 px bar, not wrong views: no tracked
   // trial may be off by 2 px (measured worst over 200 trials: 1.93 px).
   EXPECT_GE(total.successes, 22);
-  for (const ColdTrial& t : trials)
-    if (t.tracked) EXPECT_LT(t.cornerErrorPx, 2.0) << t.tiltDeg << " deg, " << t.scale << "x";
+  for (const ColdTrial& t : trials) {
+    if (t.tracked) {
+      EXPECT_LT(t.cornerErrorPx, 2.0) << t.tiltDeg << " deg, " << t.scale << "x";
+    }
+  }
 }
 
 TEST(ColdRegistrationExperiment, KeypointLayerOffRegistersOnlyNearViews) {

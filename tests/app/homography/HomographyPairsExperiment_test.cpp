@@ -95,7 +95,7 @@ TEST(HomographyPairsExperiment, BuildsAndRegistersPairsOfASequenceFolder) {
     (o2.cornerErrorPx <= 3.0 ? registered : wrong) += 1;
   }
   // The tracker never returns a wrong homography and registers nearly all of these views of
-  // an evenly textured image (measured: all 17).
+  // an evenly textured image (tilts to 60 degrees and 0.5-2x zooms included; 2 misses allowed).
   EXPECT_EQ(wrong, 0);
   EXPECT_GE(registered, 15);
 
