@@ -36,8 +36,8 @@ TEST(HomographyPairsExperiment, SyntheticViewsHaveTheStatedGeometry) {
 TEST(HomographyPairsExperiment, SynthesisedViewsAgreeWithTheirHomography) {
   const cv::Size size(640, 480);
   const cv::Mat image = test::texturedImage(size, 51);
-  for (const cv::Matx33d H : {syntheticViewHomography(size, 30, 90, 1.2, 20),
-                              syntheticViewHomography(size, 0, 0, 0.6, 200)}) {
+  for (const cv::Matx33d& H : {syntheticViewHomography(size, 30, 90, 1.2, 20),
+                               syntheticViewHomography(size, 0, 0, 0.6, 200)}) {
     const cv::Mat view = synthesiseView(image, H, 0.0, 1);
     ASSERT_EQ(view.size(), size);
     // Sampled back through H^-1 (bilinear), the view reproduces the image where it sees it: a
