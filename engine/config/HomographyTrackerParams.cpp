@@ -1,8 +1,31 @@
 #include "engine/config/HomographyTrackerParams.hpp"
 
 #include "engine/config/ConfigValue.hpp"
+#include "engine/core/Error.hpp"
 
 namespace reftrack {
+
+std::string keypointLayerName(KeypointLayer layer) {
+  switch (layer) {
+    case KeypointLayer::None:
+      return "none";
+    case KeypointLayer::Orb:
+      return "orb";
+    case KeypointLayer::Akaze:
+      return "akaze";
+    case KeypointLayer::Sift:
+      return "sift";
+  }
+  return "none";
+}
+
+KeypointLayer parseKeypointLayer(const std::string& name) {
+  for (KeypointLayer k :
+       {KeypointLayer::None, KeypointLayer::Orb, KeypointLayer::Akaze, KeypointLayer::Sift})
+    if (keypointLayerName(k) == name) return k;
+  throw Error("parameter 'homography.keypoints' must be 'orb', 'akaze', 'sift' or 'none', got '" +
+              name + "'");
+}
 
 void HomographyTrackerParams::check() const {
   requireFiniteInRange("homography.guided_search_half_size_px", guidedSearchHalfSizePx, 0.5,
@@ -11,6 +34,13 @@ void HomographyTrackerParams::check() const {
   requireFiniteInRange("homography.reacquire_corner_quality", reacquireCornerQuality, 1e-6, 1.0);
   requireFiniteInRange("homography.reacquire_min_distance_px", reacquireMinDistancePx, 1.0, 1000.0);
   requireFiniteInRange("homography.frame_corner_factor", frameCornerFactor, 1.0, 16.0);
+  requireIntInRange("homography.keypoint_features", keypointFeatures, 8, 100000);
+  requireFiniteInRange("homography.keypoint_ratio", keypointRatio, 0.1, 1.0);
+  requireFiniteInRange("homography.keypoint_detect_scale", keypointDetectScale, 0.1, 1.0);
+  requireFiniteInRange("homography.keypoint_inlier_threshold_px", keypointInlierThresholdPx, 0.1,
+                       100.0);
+  requireFiniteInRange("homography.keypoint_search_half_size_px", keypointSearchHalfSizePx, 0.5,
+                       100.0);
 }
 
 void HomographyTrackerParams::write(cv::FileStorage& fs) const {
@@ -19,7 +49,11 @@ void HomographyTrackerParams::write(cv::FileStorage& fs) const {
      << (reacquireWholeImage ? "true" : "false") << "reacquire_corner_factor"
      << reacquireCornerFactor << "reacquire_corner_quality" << reacquireCornerQuality
      << "reacquire_min_distance_px" << reacquireMinDistancePx << "frame_corner_factor"
-     << frameCornerFactor << "rotation_model" << (rotationModel ? "true" : "false");
+     << frameCornerFactor << "rotation_model" << (rotationModel ? "true" : "false") << "keypoints"
+     << keypointLayerName(keypoints) << "keypoint_features" << keypointFeatures << "keypoint_ratio"
+     << keypointRatio << "keypoint_detect_scale" << keypointDetectScale
+     << "keypoint_inlier_threshold_px" << keypointInlierThresholdPx
+     << "keypoint_search_half_size_px" << keypointSearchHalfSizePx;
 }
 
 void HomographyTrackerParams::read(const cv::FileNode& node) {
@@ -32,6 +66,14 @@ void HomographyTrackerParams::read(const cv::FileNode& node) {
   readConfigValue(node, s, "reacquire_min_distance_px", reacquireMinDistancePx);
   readConfigValue(node, s, "frame_corner_factor", frameCornerFactor);
   readConfigValue(node, s, "rotation_model", rotationModel);
+  std::string layer = keypointLayerName(keypoints);
+  readConfigValue(node, s, "keypoints", layer);
+  keypoints = parseKeypointLayer(layer);
+  readConfigValue(node, s, "keypoint_features", keypointFeatures);
+  readConfigValue(node, s, "keypoint_ratio", keypointRatio);
+  readConfigValue(node, s, "keypoint_detect_scale", keypointDetectScale);
+  readConfigValue(node, s, "keypoint_inlier_threshold_px", keypointInlierThresholdPx);
+  readConfigValue(node, s, "keypoint_search_half_size_px", keypointSearchHalfSizePx);
   check();
 }
 

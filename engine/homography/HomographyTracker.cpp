@@ -9,6 +9,7 @@
 #include "engine/config/ResolutionScale.hpp"
 #include "engine/core/Error.hpp"
 #include "engine/homography/HomographyDlt.hpp"
+#include "engine/homography/WarpedWindowSearch.hpp"
 
 namespace reftrack {
 
@@ -139,6 +140,8 @@ HomographyTracker::HomographyTracker(const cv::Mat& reference, const TrackerPara
     throw Error("homography tracker: only " + std::to_string(ref_.corners.size()) +
                 " corners in the reference image (at least 8 needed; is it textured?)");
   reacquireRef_ = referenceSet(refGray_, reacquireDetector_, half);
+  if (params_.homography.keypoints != KeypointLayer::None)
+    keypointRegistrar_.emplace(refGray_, params_.homography, params_.ransac);
 }
 
 void HomographyTracker::reset() {
@@ -175,8 +178,8 @@ HomographyTracker::Attempt HomographyTracker::attempt(const cv::Mat& gray,
                                                       const CornerDetector& detector,
                                                       const ReferenceSet& ref,
                                                       const std::optional<cv::Matx33d>& base,
-                                                      bool coasting, double stageMs[4],
-                                                      bool chainFrameToFrame) {
+                                                      bool coasting, double stageMs[kStages],
+                                                      bool chainFrameToFrame, int denseRadius) {
   Attempt a;
   auto clock = std::chrono::steady_clock::now();
   a.points = positionsOf(detector.detect(gray));
@@ -187,7 +190,7 @@ HomographyTracker::Attempt HomographyTracker::attempt(const cv::Mat& gray,
   stageMs[1] += lap(clock);
   const double guidedHalf =
       params_.homography.guidedSearchHalfSizePx * resolutionScale(gray.size());
-  matchAndFit(a, gray, ref, a.prediction, guidedHalf, stageMs);
+  matchAndFit(a, gray, ref, a.prediction, guidedHalf, stageMs, denseRadius);
   // Unguided, the whole-image search's mutual-best rule loses true matches to look-alikes far
   // away; a hypothesis that falls short of the inlier rules is checked once more by matching
   // around the positions it predicts (guided matching, Hartley & Zisserman Alg. 4.6). Measured
@@ -203,7 +206,7 @@ HomographyTracker::Attempt HomographyTracker::attempt(const cv::Mat& gray,
 
 void HomographyTracker::matchAndFit(Attempt& a, const cv::Mat& gray, const ReferenceSet& ref,
                                     const std::optional<cv::Matx33d>& guide, double guidedHalf,
-                                    double stageMs[4]) const {
+                                    double stageMs[kStages], int denseRadius) const {
   auto clock = std::chrono::steady_clock::now();
   a.src.clear();
   a.dst.clear();
@@ -214,6 +217,9 @@ void HomographyTracker::matchAndFit(Attempt& a, const cv::Mat& gray, const Refer
   a.tracked = false;
   a.failure.clear();
   std::vector<CornerMatch> matches;
+  // Dense search (denseRadius > 0): (reference, frame) positions and their NCC.
+  std::vector<std::pair<cv::Point2f, cv::Point2f>> windowMatches;
+  std::vector<float> windowScores;
   const double s = resolutionScale(gray.size());
   // Reference corners whose correlation window can be formed (else they cannot be matched).
   std::vector<char> measurable(ref.points.size(), 1);
@@ -230,8 +236,21 @@ void HomographyTracker::matchAndFit(Attempt& a, const cv::Mat& gray, const Refer
         NccPatches::warped(refGray_, ref.points, maps, params_.correlation.halfWindow);
     for (size_t i = 0; i < ref.points.size(); ++i)
       measurable[i] = warpedRef.valid(static_cast<int>(i)) ? 1 : 0;
-    matches =
-        matcher_.match(ref.points, warpedRef, a.points, a.patches, guidedHalf, guidedHalf, guide);
+    if (denseRadius > 0) {
+      std::vector<cv::Point2f> predicted(ref.points.size());
+      for (size_t i = 0; i < ref.points.size(); ++i) {
+        const cv::Point2d q = transferPoint(*guide, cv::Point2d(ref.points[i].x, ref.points[i].y));
+        predicted[i] = cv::Point2f(static_cast<float>(q.x), static_cast<float>(q.y));
+      }
+      for (const WindowMatch& w : searchWarpedWindows(gray, warpedRef, predicted, denseRadius,
+                                                      params_.correlation.minScore)) {
+        windowMatches.push_back({ref.points[static_cast<size_t>(w.reference)], w.position});
+        windowScores.push_back(w.score);
+      }
+    } else {
+      matches =
+          matcher_.match(ref.points, warpedRef, a.points, a.patches, guidedHalf, guidedHalf, guide);
+    }
   } else {
     const double hw = params_.homography.reacquireWholeImage
                           ? gray.cols
@@ -243,17 +262,22 @@ void HomographyTracker::matchAndFit(Attempt& a, const cv::Mat& gray, const Refer
       measurable[i] = ref.patches.valid(static_cast<int>(i)) ? 1 : 0;
     matches = matcher_.match(ref.points, ref.patches, a.points, a.patches, hw, hh);
   }
-  a.matches = static_cast<int>(matches.size());
+  a.matches = static_cast<int>(matches.size() + windowMatches.size());
   stageMs[2] += lap(clock);
 
-  a.src.reserve(matches.size());
-  a.dst.reserve(matches.size());
+  a.src.reserve(static_cast<size_t>(a.matches));
+  a.dst.reserve(static_cast<size_t>(a.matches));
   std::vector<float> score;
-  score.reserve(matches.size());
+  score.reserve(static_cast<size_t>(a.matches));
   for (const CornerMatch& m : matches) {
     a.src.push_back(ref.points[static_cast<size_t>(m.first)]);
     a.dst.push_back(a.points[static_cast<size_t>(m.second)]);
     score.push_back(m.score);
+  }
+  for (size_t i = 0; i < windowMatches.size(); ++i) {
+    a.src.push_back(windowMatches[i].first);
+    a.dst.push_back(windowMatches[i].second);
+    score.push_back(windowScores[i]);
   }
   // The paper's failure test: inliers among the reference corners this frame can see (mapped
   // inside it with their whole window, and with a window in the reference).
@@ -278,7 +302,24 @@ void HomographyTracker::matchAndFit(Attempt& a, const cv::Mat& gray, const Refer
     }
     return true;
   };
-  a.est = estimator_.estimate(a.src, a.dst, gray.size(), score);
+  if (!windowMatches.empty()) {
+    // Fitted as the correction of the prediction (predicted -> found positions, near the
+    // identity) and chained with it: the determinant test then judges the correction, not the
+    // view (a 2x zoom seen at 45 degrees has |det H| > 20 at the reference's origin).
+    std::vector<cv::Point2f> predictedSrc;
+    predictedSrc.reserve(a.src.size());
+    for (const cv::Point2f& r : a.src) {
+      const cv::Point2d q = transferPoint(*guide, cv::Point2d(r.x, r.y));
+      predictedSrc.emplace_back(static_cast<float>(q.x), static_cast<float>(q.y));
+    }
+    a.est = estimator_.estimate(predictedSrc, a.dst, gray.size(), score);
+    if (a.est.success) {
+      a.est.H = a.est.H * *guide;
+      a.est.H *= 1.0 / a.est.H(2, 2);
+    }
+  } else {
+    a.est = estimator_.estimate(a.src, a.dst, gray.size(), score);
+  }
   a.tracked = judge(a.est, a.inlierRatio, a.failure);
   if (a.est.success) a.hypothesis = a.est.H;
   // The rotation-only model when the general one fails, and in its place when it explains the
@@ -316,13 +357,50 @@ void HomographyTracker::matchAndFit(Attempt& a, const cv::Mat& gray, const Refer
   stageMs[3] += lap(clock);
 }
 
+HomographyTracker::Attempt HomographyTracker::coldAttempt(const cv::Mat& gray,
+                                                          double stageMs[kStages],
+                                                          bool& keypointGuided) {
+  keypointGuided = false;
+  std::string keypointFailure;
+  if (keypointRegistrar_) {
+    auto clock = std::chrono::steady_clock::now();
+    const KeypointRegistration k = keypointRegistrar_->registerFrame(gray);
+    stageMs[4] += lap(clock);
+    if (k.found) {
+      // The keypoint homography predicts; the reference corners matched around it with warped
+      // windows give the result (the tracking set, then the denser one, as while tracking).
+      const int radius =
+          std::max(2, static_cast<int>(std::lround(params_.homography.keypointSearchHalfSizePx *
+                                                   resolutionScale(gray.size()))));
+      Attempt a = attempt(gray, frameDetector_, ref_, k.H, false, stageMs, false, radius);
+      if (!a.tracked) {
+        Attempt dense =
+            attempt(gray, reacquireDetector_, reacquireRef_, k.H, false, stageMs, false, radius);
+        if (dense.tracked) a = std::move(dense);
+      }
+      if (a.tracked) {
+        keypointGuided = true;
+        return a;
+      }
+      keypointFailure = "around the keypoint homography: " + a.failure;
+    } else {
+      keypointFailure = "keypoints: " + k.failure;
+    }
+  }
+  Attempt a = attempt(gray, reacquireDetector_, reacquireRef_, std::nullopt, false, stageMs);
+  if (!a.tracked && !keypointFailure.empty())
+    a.failure = keypointFailure + "; unguided: " + a.failure;
+  return a;
+}
+
 HomographyTrackResult HomographyTracker::track(const cv::Mat& frame) {
   const cv::Mat gray = toGray8(frame);
   if (gray.size() != refGray_.size())
     throw Error("homography tracker: frame is " + std::to_string(gray.cols) + "x" +
                 std::to_string(gray.rows) + " but the reference is " +
                 std::to_string(refGray_.cols) + "x" + std::to_string(refGray_.rows));
-  double stageMs[4] = {0, 0, 0, 0};
+  double stageMs[kStages] = {0, 0, 0, 0, 0};
+  bool keypointGuided = false;
   // While tracking (or coasting after a loss): the reference's corners matched around their
   // predicted positions in the denser frame set. Unguided, with the denser re-acquisition sets
   // on both sides: when there is no prediction, or when the coasted one failed too.
@@ -347,13 +425,14 @@ HomographyTrackResult HomographyTracker::track(const cv::Mat& frame) {
       // unguided attempt does not replace them.
       prevPoints_ = std::move(a.points);
       prevPatches_ = std::move(a.patches);
-      a = attempt(gray, reacquireDetector_, reacquireRef_, std::nullopt, false, stageMs);
+      a = coldAttempt(gray, stageMs, keypointGuided);
     }
   }
 
   HomographyTrackResult out;
   out.tracked = a.tracked;
-  out.guided = a.prediction.has_value();
+  out.guided = a.prediction.has_value() && !keypointGuided;
+  out.keypointGuided = keypointGuided;
   out.rotationModel = a.rotationModel;
   out.corners = static_cast<int>(a.points.size());
   out.matches = a.matches;
@@ -364,8 +443,8 @@ HomographyTrackResult HomographyTracker::track(const cv::Mat& frame) {
   for (size_t i = 0; i < a.src.size(); ++i)
     if (a.est.inliers[i]) out.inlierMatches.emplace_back(a.src[i], a.dst[i]);
   out.frameCorners = a.points;
-  const char* names[4] = {"corners", "prediction", "matching", "robust fit"};
-  for (int i = 0; i < 4; ++i) out.stageMs.emplace_back(names[i], stageMs[i]);
+  const char* names[kStages] = {"corners", "prediction", "matching", "robust fit", "keypoints"};
+  for (int i = 0; i < kStages; ++i) out.stageMs.emplace_back(names[i], stageMs[i]);
   prevPoints_ = std::move(a.points);
   prevPatches_ = std::move(a.patches);
   if (a.tracked) {

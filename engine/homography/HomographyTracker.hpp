@@ -9,9 +9,13 @@
 // that fall inside it (and whose window can be formed) is flagged lost. The next frames are
 // still matched guided by the last prediction carried on with frame-to-frame homographies
 // (coasting); when that fails too, or no frame-to-frame homography is found, a frame is matched
-// unguided (square windows, whole image, a denser corner set on both sides, RANSAC drawing from
-// the best correlation scores first; a hypothesis short of the inlier rules is re-matched around
-// its own prediction), so tracking re-acquires on its own when the view returns.
+// cold: first by the keypoint layer (homography.keypoints: descriptor matches give a homography
+// from any viewpoint, around which the reference corners are matched with warped windows as
+// above, so the result has the correlation's precision and passes the same inlier rules), then,
+// failing that, unguided (square windows, whole image, a denser corner set on both sides, RANSAC
+// drawing from the best correlation scores first; a hypothesis short of the inlier rules is
+// re-matched around its own prediction), so tracking re-acquires on its own when the view
+// returns.
 // Given the camera's K, a frame the general homography fails on — or fits on a thin strip only —
 // is solved with the rotation-only model H = K R K^-1 (homography.rotation_model), which a
 // sliver of overlap still determines.
@@ -25,6 +29,7 @@
 #include "engine/config/TrackerParams.hpp"
 #include "engine/features/Corner.hpp"
 #include "engine/features/CornerDetector.hpp"
+#include "engine/homography/KeypointHomographyRegistrar.hpp"
 #include "engine/homography/RobustHomographyEstimator.hpp"
 #include "engine/homography/RotationHomographyEstimator.hpp"
 #include "engine/matching/NarrowBaselineMatcher.hpp"
@@ -39,13 +44,16 @@ struct HomographyTrackResult {
   int corners = 0;                     // corners detected in this frame
   int matches = 0;                     // correlation matches to the reference
   int inliers = 0;
-  bool guided = false;         // matched around a prediction (false: unguided re-acquisition)
-  bool rotationModel = false;  // H is the rotation-only model K R K^-1 (needs K)
-  std::string failure;         // why the frame was not tracked
+  bool guided = false;  // matched around a prediction from earlier frames (false: cold)
+  // Cold registration through the keypoint layer: the correlation matching was guided by the
+  // keypoint homography (guided stays false).
+  bool keypointGuided = false;
+  bool rotationModel = false;             // H is the rotation-only model K R K^-1 (needs K)
+  std::string failure;                    // why the frame was not tracked
   std::vector<cv::Point2f> frameCorners;  // corner positions detected in this frame
   // Inlier correspondences (reference position, frame position) of the final H.
   std::vector<std::pair<cv::Point2f, cv::Point2f>> inlierMatches;
-  // Milliseconds per stage, in order: corners, prediction, matching, robust fit.
+  // Milliseconds per stage, in order: corners, prediction, matching, robust fit, keypoints.
   std::vector<std::pair<std::string, double>> stageMs;
 };
 
@@ -73,6 +81,8 @@ class HomographyTracker {
                                      const std::vector<cv::Point2f>& points,
                                      const NccPatches& patches) const;
 
+  static constexpr int kStages = 5;  // corners, prediction, matching, robust fit, keypoints
+
   // One corner set of the reference with its windows (tracking or re-acquisition density).
   struct ReferenceSet {
     std::vector<Corner> corners;
@@ -84,8 +94,8 @@ class HomographyTracker {
 
   // One registration attempt of a frame: guided by the prediction from `base` when there is
   // one (base chained with the frame-to-frame homography, or base itself when
-  // chainFrameToFrame is false), else unguided. stageMs[4] accumulates corners, prediction,
-  // matching, robust fit.
+  // chainFrameToFrame is false), else unguided. stageMs accumulates corners, prediction,
+  // matching, robust fit (stageMs[0..3]).
   struct Attempt {
     std::vector<cv::Point2f> points;  // the frame's corners
     NccPatches patches{1};
@@ -101,14 +111,18 @@ class HomographyTracker {
     std::string failure;
   };
   Attempt attempt(const cv::Mat& gray, const CornerDetector& detector, const ReferenceSet& ref,
-                  const std::optional<cv::Matx33d>& base, bool coasting, double stageMs[4],
-                  bool chainFrameToFrame = true);
+                  const std::optional<cv::Matx33d>& base, bool coasting, double stageMs[kStages],
+                  bool chainFrameToFrame = true, int denseRadius = 0);
   // Matches the attempt's frame corners to `ref` — around the positions `guide` predicts
   // (warped windows, +-guidedHalf pixels), or unguided — then fits H (the general model, then
-  // the rotation model) and applies the inlier rules. stageMs[2..3] accumulate.
+  // the rotation model) and applies the inlier rules. stageMs[2..3] accumulate. denseRadius > 0:
+  // guided, each warped window is searched at every pixel within +-denseRadius of its predicted
+  // position instead of at the frame's corners (searchWarpedWindows).
   void matchAndFit(Attempt& a, const cv::Mat& gray, const ReferenceSet& ref,
                    const std::optional<cv::Matx33d>& guide, double guidedHalf,
-                   double stageMs[4]) const;
+                   double stageMs[kStages], int denseRadius = 0) const;
+  // Registration without a prediction: around the keypoint layer's homography, then unguided.
+  Attempt coldAttempt(const cv::Mat& gray, double stageMs[kStages], bool& keypointGuided);
 
   TrackerParams params_;
   CornerDetector detector_;           // the reference's tracking corners
@@ -117,6 +131,7 @@ class HomographyTracker {
   NarrowBaselineMatcher matcher_;
   RobustHomographyEstimator estimator_;
   std::optional<RotationHomographyEstimator> rotationEstimator_;  // with K and rotation_model
+  std::optional<KeypointHomographyRegistrar> keypointRegistrar_;  // unless keypoints is none
   cv::Mat refGray_;
   ReferenceSet ref_, reacquireRef_;
   // The previous frame (for the frame-to-frame homography) and its registration.

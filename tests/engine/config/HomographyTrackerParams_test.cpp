@@ -19,6 +19,11 @@ TEST(HomographyTrackerParams, RoundTrip) {
   in.reacquireCornerQuality = 0.003;
   in.reacquireMinDistancePx = 6;
   in.rotationModel = false;
+  in.keypoints = KeypointLayer::Akaze;
+  in.keypointFeatures = 700;
+  in.keypointRatio = 0.7;
+  in.keypointDetectScale = 0.5;
+  in.keypointInlierThresholdPx = 2.5;
   HomographyTrackerParams out;
   roundTrip(in, out);
   EXPECT_DOUBLE_EQ(out.guidedSearchHalfSizePx, 4.5);
@@ -29,6 +34,22 @@ TEST(HomographyTrackerParams, RoundTrip) {
   EXPECT_DOUBLE_EQ(out.reacquireCornerQuality, 0.003);
   EXPECT_DOUBLE_EQ(out.reacquireMinDistancePx, 6);
   EXPECT_FALSE(out.rotationModel);
+  EXPECT_EQ(out.keypoints, KeypointLayer::Akaze);
+  EXPECT_EQ(out.keypointFeatures, 700);
+  EXPECT_DOUBLE_EQ(out.keypointRatio, 0.7);
+  EXPECT_DOUBLE_EQ(out.keypointDetectScale, 0.5);
+  EXPECT_DOUBLE_EQ(out.keypointInlierThresholdPx, 2.5);
+}
+
+TEST(HomographyTrackerParams, KeypointLayerNames) {
+  for (KeypointLayer k :
+       {KeypointLayer::None, KeypointLayer::Orb, KeypointLayer::Akaze, KeypointLayer::Sift})
+    EXPECT_EQ(parseKeypointLayer(keypointLayerName(k)), k);
+  EXPECT_NE(errorMessage([] { parseKeypointLayer("surf"); }).find("homography.keypoints"),
+            std::string::npos);
+  auto fs = parseYaml("h: { keypoints: brisk }\n");
+  HomographyTrackerParams q;
+  EXPECT_NE(errorMessage([&] { q.read(fs["h"]); }).find("'brisk'"), std::string::npos);
 }
 
 TEST(HomographyTrackerParams, BadFieldIsNamed) {
@@ -51,6 +72,21 @@ TEST(HomographyTrackerParams, BadFieldIsNamed) {
   p.reacquireCornerQuality = 1e-4;
   p.reacquireMinDistancePx = std::numeric_limits<double>::infinity();
   EXPECT_NE(errorMessage([&] { p.check(); }).find("homography.reacquire_min_distance_px"),
+            std::string::npos);
+  p.reacquireMinDistancePx = 4;
+  p.keypointFeatures = 2;
+  EXPECT_NE(errorMessage([&] { p.check(); }).find("homography.keypoint_features"),
+            std::string::npos);
+  p.keypointFeatures = 1000;
+  p.keypointRatio = 1.5;
+  EXPECT_NE(errorMessage([&] { p.check(); }).find("homography.keypoint_ratio"), std::string::npos);
+  p.keypointRatio = 0.8;
+  p.keypointDetectScale = 0;
+  EXPECT_NE(errorMessage([&] { p.check(); }).find("homography.keypoint_detect_scale"),
+            std::string::npos);
+  p.keypointDetectScale = 1;
+  p.keypointInlierThresholdPx = -1;
+  EXPECT_NE(errorMessage([&] { p.check(); }).find("homography.keypoint_inlier_threshold_px"),
             std::string::npos);
   auto fs = parseYaml("h: { frame_to_frame_prediction: 3 }\n");
   HomographyTrackerParams q;

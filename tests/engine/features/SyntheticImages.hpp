@@ -2,6 +2,7 @@
 // Synthetic test images with exact ground truth: a textured scene of random rectangles and
 // ellipses on a smooth background, ideal squares with known sub-pixel corners, and warps of an
 // image by a known homography.
+#include <cmath>
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 #include <vector>
@@ -59,6 +60,24 @@ inline double cornerError(const cv::Matx33d& H, const cv::Matx33d& truth, cv::Si
     worst = std::max(worst, std::hypot(a[0] / a[2] - b[0] / b[2], a[1] / a[2] - b[1] / b[2]));
   }
   return worst;
+}
+
+// A far view of a planar image filling `size` (focal length = width): the plane tilted out of
+// the image by tiltDeg about its vertical axis through the centre, seen at `scale` (distance
+// f / scale) and rotated in-plane by rollDeg. Reference pixels -> view pixels, h33 = 1.
+inline cv::Matx33d tiltedView(cv::Size size, double tiltDeg, double scale, double rollDeg) {
+  const double pi = 3.14159265358979323846;
+  const double f = size.width, cx = (size.width - 1) / 2.0, cy = (size.height - 1) / 2.0;
+  const cv::Matx33d K(f, 0, cx, 0, f, cy, 0, 0, 1);
+  const double t = tiltDeg * pi / 180.0, r = rollDeg * pi / 180.0;
+  const cv::Matx33d Ry(std::cos(t), 0, std::sin(t), 0, 1, 0, -std::sin(t), 0, std::cos(t));
+  const cv::Matx33d Rz(std::cos(r), -std::sin(r), 0, std::sin(r), std::cos(r), 0, 0, 0, 1);
+  const cv::Matx33d R = Rz * Ry;
+  // Plane point (x, y) (pixels from the centre) at R (x, y, 0) + (0, 0, f / scale).
+  const cv::Matx33d P(R(0, 0), R(0, 1), 0, R(1, 0), R(1, 1), 0, R(2, 0), R(2, 1), f / scale);
+  const cv::Matx33d toPlane(1, 0, -cx, 0, 1, -cy, 0, 0, 1);
+  const cv::Matx33d H = K * P * toPlane;
+  return H * (1.0 / H(2, 2));
 }
 
 }  // namespace reftrack::test

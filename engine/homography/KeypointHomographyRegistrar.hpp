@@ -1,0 +1,53 @@
+#pragma once
+// KeypointHomographyRegistrar: a viewpoint-invariant first guess of the reference -> frame
+// homography for cold registration — ORB / AKAZE / SIFT keypoints (the reference's detected once),
+// mutual nearest-neighbour descriptor matches passing Lowe's ratio test, and a RANSAC homography.
+// It only predicts: HomographyTracker matches its correlation windows around this guess.
+#include <opencv2/core.hpp>
+#include <opencv2/features2d.hpp>
+#include <string>
+#include <vector>
+
+#include "engine/config/HomographyTrackerParams.hpp"
+#include "engine/config/RansacParams.hpp"
+
+namespace reftrack {
+
+struct KeypointRegistration {
+  bool found = false;
+  cv::Matx33d H = cv::Matx33d::eye();  // reference -> frame (meaningful when found)
+  int frameKeypoints = 0;
+  int matches = 0;  // mutual, ratio-tested descriptor matches
+  int inliers = 0;
+  std::string failure;  // why found is false
+};
+
+class KeypointHomographyRegistrar {
+ public:
+  // reference: 8-bit grey or BGR. params.keypoints picks the detector (not None); ransac gives
+  // the inlier count and determinant rules. Throws reftrack::Error on an empty reference, bad
+  // parameters, the None layer, or a reference with fewer keypoints than ransac.minInliers.
+  KeypointHomographyRegistrar(const cv::Mat& reference, const HomographyTrackerParams& params,
+                              const RansacParams& ransac = {});
+
+  // frame: 8-bit grey or BGR, any size (the inlier threshold scales with it). Throws
+  // reftrack::Error on an empty frame.
+  KeypointRegistration registerFrame(const cv::Mat& frame) const;
+
+  int referenceKeypoints() const { return static_cast<int>(refKeypoints_.size()); }
+
+ private:
+  // Keypoints and descriptors of `gray`, detected at `scale` of its size (positions given in
+  // `gray`'s pixels), the `features` strongest.
+  void detect(const cv::Mat& gray, double scale, std::vector<cv::KeyPoint>& keypoints,
+              cv::Mat& descriptors) const;
+
+  HomographyTrackerParams params_;
+  RansacParams ransac_;
+  cv::Ptr<cv::Feature2D> detector_;
+  int norm_ = cv::NORM_L2;
+  std::vector<cv::KeyPoint> refKeypoints_;
+  cv::Mat refDescriptors_;
+};
+
+}  // namespace reftrack
