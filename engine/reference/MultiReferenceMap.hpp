@@ -25,7 +25,7 @@ struct PointObservation {
 
 struct MapPoint {
   Eigen::Vector3d world = Eigen::Vector3d::Zero();  // metres, world frame
-  std::vector<PointObservation> observations;        // at least two views, each at most once
+  std::vector<PointObservation> observations;       // at least two views, each at most once
 };
 
 struct ReferenceView {
