@@ -25,6 +25,13 @@ constexpr int kSpreadGrid = 4;
 // finest keypoints seen from twice its distance), when that is at least kMinZoom.
 constexpr double kMaxZoom = 2.0, kMinZoom = 1.2;
 
+// A pixel of an image region at `origin` magnified `zoom` times with cv::resize, in the frame
+// (cv::resize maps pixel centres: x_src = (x_dst + 0.5) / zoom - 0.5).
+cv::Point2f magnifiedToFrame(cv::Point2f p, double zoom, cv::Point origin) {
+  return {static_cast<float>((p.x + 0.5) / zoom - 0.5 + origin.x),
+          static_cast<float>((p.y + 0.5) / zoom - 0.5 + origin.y)};
+}
+
 struct IndexedReference {
   int view = -1;
   cv::Mat descriptors;              // rows of the keypoints that have a 3D point
@@ -460,9 +467,7 @@ RelocalisationAttempt Relocaliser::Impl::locateWith(const cv::Mat& frame,
       cv::Mat zoomedDescriptors;
       features.detectAndDescribe(magnified, params.featuresPerFrameFor(size), zoomed,
                                  zoomedDescriptors);
-      for (cv::KeyPoint& k : zoomed)
-        k.pt = cv::Point2f(static_cast<float>(k.pt.x / zoom + roi.x),
-                           static_cast<float>(k.pt.y / zoom + roi.y));
+      for (cv::KeyPoint& k : zoomed) k.pt = magnifiedToFrame(k.pt, zoom, roi.tl());
       std::vector<cv::Point3f> zObject;
       std::vector<cv::Point2f> zImage;
       std::vector<int> zReference;
