@@ -4,7 +4,7 @@
 #include <chrono>
 #include <cmath>
 
-#include "app/baselines/OrbPnpRelocaliser.hpp"
+#include "app/baselines/OrbPnpColdStart.hpp"
 #include "engine/core/Error.hpp"
 #include "engine/relocalisation/Relocaliser.hpp"
 
@@ -45,9 +45,9 @@ RelocalisationBenchmarkResult runRelocalisationBenchmark(
     orb.keypoints = "orb";
     buildReferenceKeypoints(*orbMap, orb);
   }
-  OrbPnpRelocaliserParams baselineParams;
+  OrbPnpColdStartParams baselineParams;
   baselineParams.minInliers = o.params.minInliers;
-  const OrbPnpRelocaliser baseline(orbMap ? *orbMap : map, baselineParams);
+  const OrbPnpColdStart baseline(orbMap ? *orbMap : map, baselineParams);
 
   RelocalisationBenchmarkResult r;
   r.relocaliser.name = "relocaliser (" + o.params.keypoints + ")";
@@ -62,7 +62,7 @@ RelocalisationBenchmarkResult runRelocalisationBenchmark(
         const RelocalisationAttempt a = relocaliser.locate(frames[i]);
         if (a.candidate) pose = a.candidate->worldToCamera;
       } else {
-        pose = baseline.locate(frames[i]);
+        pose = baseline.locate(frames[i]).worldToCamera;
       }
       const double ms =
           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)

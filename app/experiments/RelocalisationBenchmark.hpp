@@ -1,6 +1,6 @@
 #pragma once
 // Relocalisation benchmark (issue 13): the Relocaliser and the plain ORB + solvePnPRansac baseline
-// (OrbPnpRelocaliser) on the same frames against the same map, alternating per frame so both see
+// (OrbPnpColdStart) on the same frames against the same map, alternating per frame so both see
 // the same machine load: per-attempt milliseconds, success and wrong-pose counts, pose errors
 // against ground truth. The caller sets the thread count (cv::setNumThreads(1) for the figures).
 #include <cstdio>

@@ -14,7 +14,10 @@ struct RelocalisationParams {
   // view without a wrong pose; median CPU per attempt ORB 19 ms, AKAZE 139 ms, SIFT 285 ms
   // (centre error 1.8, 1.7, 0.6 mm: the tracker refines the candidate anyway).
   std::string keypoints = "orb";
-  int featuresPerFrame = 1000;      // keypoints detected in a frame (640x480)
+  // Keypoints detected in a frame (640x480). Measured on 200 random views of 8 walkaround
+  // references (experiment-relocalisation): 1000 pose 87.5% of them, 1500 92.5%, 2000 92.5%, no
+  // wrong pose in each case; the first frame's median cost 21.5, 22.5, 26.4 ms.
+  int featuresPerFrame = 1500;
   int featuresPerReference = 2000;  // keypoints stored per reference (640x480)
   double ratio = 0.8;               // Lowe's ratio test on the two nearest descriptors
   // Retrieval: match only the best-voted references. Measured on 8 references of a synthetic

@@ -21,6 +21,16 @@ namespace {
 constexpr int kRetrievalKeypoints = 250;
 // The inlier spread is counted on a kSpreadGrid x kSpreadGrid grid over the frame.
 constexpr int kSpreadGrid = 4;
+// A far view's mapped region is detected again magnified by up to kMaxZoom (2x: a reference's
+// finest keypoints seen from twice its distance), when that is at least kMinZoom.
+constexpr double kMaxZoom = 2.0, kMinZoom = 1.2;
+
+// A pixel of an image region at `origin` magnified `zoom` times with cv::resize, in the frame
+// (cv::resize maps pixel centres: x_src = (x_dst + 0.5) / zoom - 0.5).
+cv::Point2f magnifiedToFrame(cv::Point2f p, double zoom, cv::Point origin) {
+  return {static_cast<float>((p.x + 0.5) / zoom - 0.5 + origin.x),
+          static_cast<float>((p.y + 0.5) / zoom - 0.5 + origin.y)};
+}
 
 struct IndexedReference {
   int view = -1;
@@ -104,6 +114,23 @@ struct Relocaliser::Impl {
   std::vector<int> retrieve(const std::vector<cv::KeyPoint>& keypoints,
                             const cv::Mat& descriptors) const;
   RelocalisationAttempt locate(const cv::Mat& frame) const;
+  // The pose from the frame's keypoints matched to the references `matched` (indices into
+  // references), guided matching and the acceptance.
+  RelocalisationAttempt locateWith(const cv::Mat& frame, const std::vector<cv::KeyPoint>& keypoints,
+                                   const cv::Mat& descriptors,
+                                   const std::vector<int>& matched) const;
+  // LM refinement on `inliers`, twice re-selecting the matches within `threshold` px (in front
+  // of the camera) under the refined pose; `errors` gets every match's reprojection error.
+  void refine(const std::vector<cv::Point3f>& object, const std::vector<cv::Point2f>& image,
+              double threshold, cv::Mat& rvec, cv::Mat& tvec, std::vector<int>& inliers,
+              std::vector<double>& errors) const;
+  // Appends to object/image/matchReference the frame keypoints (other than the `used` ones)
+  // that lie within `radius` px of a reference point projected with rvec/tvec and whose
+  // descriptor is within `maxDistance` of that point's: the closest such point each.
+  void guidedMatches(const std::vector<cv::KeyPoint>& keypoints, const cv::Mat& descriptors,
+                     const cv::Mat& rvec, const cv::Mat& tvec, double radius, float maxDistance,
+                     const std::vector<char>& used, std::vector<cv::Point3f>& object,
+                     std::vector<cv::Point2f>& image, std::vector<int>& matchReference) const;
 };
 
 Relocaliser::Relocaliser(const MultiReferenceMap& map, const RelocalisationParams& params) {
@@ -177,6 +204,91 @@ std::vector<int> Relocaliser::Impl::retrieve(const std::vector<cv::KeyPoint>& ke
   return all;
 }
 
+void Relocaliser::Impl::refine(const std::vector<cv::Point3f>& object,
+                               const std::vector<cv::Point2f>& image, double threshold,
+                               cv::Mat& rvec, cv::Mat& tvec, std::vector<int>& inliers,
+                               std::vector<double>& errors) const {
+  errors.assign(object.size(), 1e9);
+  for (int pass = 0; pass < 2; ++pass) {
+    std::vector<cv::Point3f> obj;
+    std::vector<cv::Point2f> img;
+    for (int i : inliers) {
+      obj.push_back(object[static_cast<std::size_t>(i)]);
+      img.push_back(image[static_cast<std::size_t>(i)]);
+    }
+    cv::solvePnPRefineLM(obj, img, K, distortion, rvec, tvec);
+    std::vector<cv::Point2f> back;
+    cv::projectPoints(object, rvec, tvec, K, distortion, back);
+    const RigidPose T = poseFrom(rvec, tvec);
+    inliers.clear();
+    for (std::size_t i = 0; i < object.size(); ++i) {
+      const Eigen::Vector3d X(object[i].x, object[i].y, object[i].z);
+      errors[i] = (T * X).z() > 0 ? cv::norm(back[i] - image[i]) : 1e9;
+      if (errors[i] < threshold) inliers.push_back(static_cast<int>(i));
+    }
+    if (static_cast<int>(inliers.size()) < params.minInliers) break;
+  }
+}
+
+void Relocaliser::Impl::guidedMatches(const std::vector<cv::KeyPoint>& keypoints,
+                                      const cv::Mat& descriptors, const cv::Mat& rvec,
+                                      const cv::Mat& tvec, double radius, float maxDistance,
+                                      const std::vector<char>& used,
+                                      std::vector<cv::Point3f>& object,
+                                      std::vector<cv::Point2f>& image,
+                                      std::vector<int>& matchReference) const {
+  // Frame keypoints bucketed on a grid of `radius` cells: a projection looks at 3x3 cells.
+  const cv::Size size = camera.imageSize();
+  const int cols = std::max(1, static_cast<int>(std::ceil(size.width / radius)));
+  const int rows = std::max(1, static_cast<int>(std::ceil(size.height / radius)));
+  std::vector<std::vector<int>> grid(static_cast<std::size_t>(cols * rows));
+  for (std::size_t k = 0; k < keypoints.size(); ++k) {
+    if (used[k]) continue;
+    const int cx = std::clamp(static_cast<int>(keypoints[k].pt.x / radius), 0, cols - 1);
+    const int cy = std::clamp(static_cast<int>(keypoints[k].pt.y / radius), 0, rows - 1);
+    grid[static_cast<std::size_t>(cy * cols + cx)].push_back(static_cast<int>(k));
+  }
+  struct Guided {
+    int reference = -1, point = -1;
+    double distance = 0.0;
+  };
+  std::vector<Guided> best(keypoints.size());
+  cv::Mat R;
+  cv::Rodrigues(rvec, R);
+  const double r2 = radius * radius;
+  for (std::size_t r = 0; r < references.size(); ++r) {
+    const IndexedReference& ref = references[r];
+    std::vector<cv::Point2f> projected;
+    cv::projectPoints(ref.points, rvec, tvec, K, distortion, projected);
+    for (std::size_t p = 0; p < ref.points.size(); ++p) {
+      const cv::Point3f& X = ref.points[p];
+      const double z = R.at<double>(2, 0) * X.x + R.at<double>(2, 1) * X.y +
+                       R.at<double>(2, 2) * X.z + tvec.at<double>(2);
+      const cv::Point2f& u = projected[p];
+      if (!(z > 0) || !(u.x >= 0 && u.y >= 0 && u.x < size.width && u.y < size.height)) continue;
+      const int cx = static_cast<int>(u.x / radius), cy = static_cast<int>(u.y / radius);
+      for (int y = std::max(0, cy - 1); y <= std::min(rows - 1, cy + 1); ++y)
+        for (int x = std::max(0, cx - 1); x <= std::min(cols - 1, cx + 1); ++x)
+          for (int k : grid[static_cast<std::size_t>(y * cols + x)]) {
+            const cv::Point2f d = keypoints[static_cast<std::size_t>(k)].pt - u;
+            if (d.x * d.x + d.y * d.y > r2) continue;
+            const double distance = cv::norm(
+                descriptors.row(k), ref.descriptors.row(static_cast<int>(p)), features.normType());
+            Guided& b = best[static_cast<std::size_t>(k)];
+            if (distance <= maxDistance && (b.reference < 0 || distance < b.distance))
+              b = {static_cast<int>(r), static_cast<int>(p), distance};
+          }
+    }
+  }
+  for (std::size_t k = 0; k < best.size(); ++k) {
+    if (best[k].reference < 0) continue;
+    object.push_back(references[static_cast<std::size_t>(best[k].reference)]
+                         .points[static_cast<std::size_t>(best[k].point)]);
+    image.push_back(keypoints[k].pt);
+    matchReference.push_back(best[k].reference);
+  }
+}
+
 RelocalisationAttempt Relocaliser::Impl::locate(const cv::Mat& frame) const {
   const cv::Size size = camera.imageSize();
   if (frame.empty()) throw Error("relocalisation: empty frame");
@@ -197,9 +309,30 @@ RelocalisationAttempt Relocaliser::Impl::locate(const cv::Mat& frame) const {
     return out;
   }
 
+  // Retrieval ranks the references by the votes of the strongest keypoints; when the best-voted
+  // ones give no pose, all are matched (measured on 40 random views of 8 walkaround
+  // references: 3 of the 4 views the top two left without a pose were relocalised by all 8; the
+  // fallback costs only on such frames, an attempt's median stays that of matching two).
+  const std::vector<int> retrieved = retrieve(keypoints, descriptors);
+  RelocalisationAttempt first = locateWith(frame, keypoints, descriptors, retrieved);
+  if (first.candidate || retrieved.size() == references.size()) return first;
+  std::vector<int> all(references.size());
+  std::iota(all.begin(), all.end(), 0);
+  RelocalisationAttempt second = locateWith(frame, keypoints, descriptors, all);
+  if (!second.candidate)
+    second.message = first.message + "; with all references: " + second.message;
+  return second;
+}
+
+RelocalisationAttempt Relocaliser::Impl::locateWith(const cv::Mat& frame,
+                                                    const std::vector<cv::KeyPoint>& keypoints,
+                                                    const cv::Mat& descriptors,
+                                                    const std::vector<int>& matched) const {
+  const cv::Size size = camera.imageSize();
+  RelocalisationAttempt out;
   // 2D-3D matches: each frame keypoint keeps its closest ratio-test match over the references.
   std::vector<Match> best(keypoints.size());
-  for (int r : retrieve(keypoints, descriptors))
+  for (int r : matched)
     for (const cv::DMatch& m :
          matchDescriptors(descriptors, references[static_cast<std::size_t>(r)].descriptors,
                           features.normType(), params.ratio, false)) {
@@ -209,8 +342,12 @@ RelocalisationAttempt Relocaliser::Impl::locate(const cv::Mat& frame) const {
   std::vector<cv::Point3f> object;
   std::vector<cv::Point2f> image;
   std::vector<int> matchReference;
+  std::vector<float> matchDistance;
+  std::vector<int> matchKeypoint;
   for (std::size_t k = 0; k < best.size(); ++k) {
     if (best[k].reference < 0) continue;
+    matchDistance.push_back(best[k].distance);
+    matchKeypoint.push_back(static_cast<int>(k));
     object.push_back(references[static_cast<std::size_t>(best[k].reference)]
                          .points[static_cast<std::size_t>(best[k].point)]);
     image.push_back(keypoints[k].pt);
@@ -241,66 +378,153 @@ RelocalisationAttempt Relocaliser::Impl::locate(const cv::Mat& frame) const {
   }
   // Refine on the inliers, re-select the inliers under the refined pose, refine once more.
   std::vector<int> inliers = ransacInliers;
-  std::vector<double> errors(object.size());
-  for (int pass = 0; pass < 2; ++pass) {
-    std::vector<cv::Point3f> obj;
-    std::vector<cv::Point2f> img;
+  std::vector<double> errors;
+  refine(object, image, threshold, rvec, tvec, inliers, errors);
+  const int firstInliers = static_cast<int>(inliers.size());
+  const double ratio = static_cast<double>(firstInliers) / matches;
+
+  // Guided matching: a far view sees the scene small, and the ratio test against whole
+  // references keeps few of its matches (on 8 walkaround references, 50-120 inliers at 1.4-1.9x
+  // the reference distance: a pose spread of 0.3-0.5% of the depth, over the bound). The first
+  // pose projects every reference's points into the frame; a frame keypoint near a projection
+  // with a descriptor as close as the first inliers' takes it, and the pose is refined on the
+  // larger set. The acceptance below then judges the pose on all its support, with the same
+  // bounds.
+  float guidedMaxDistance = 0.0f;
+  if (firstInliers >= params.minInliers && ratio >= params.minInlierRatio) {
+    std::vector<float> inlierDistances;
+    for (int i : inliers) inlierDistances.push_back(matchDistance[static_cast<std::size_t>(i)]);
+    const auto q = inlierDistances.begin() + static_cast<long>(inlierDistances.size() * 9 / 10);
+    std::nth_element(inlierDistances.begin(), q, inlierDistances.end());
+    guidedMaxDistance = *q;
+    // The first inliers stay; the other keypoints may take a guided match.
+    std::vector<cv::Point3f> guidedObject;
+    std::vector<cv::Point2f> guidedImage;
+    std::vector<int> guidedReference;
+    std::vector<char> used(keypoints.size(), 0);
     for (int i : inliers) {
-      obj.push_back(object[static_cast<std::size_t>(i)]);
-      img.push_back(image[static_cast<std::size_t>(i)]);
+      const auto u = static_cast<std::size_t>(i);
+      guidedObject.push_back(object[u]);
+      guidedImage.push_back(image[u]);
+      guidedReference.push_back(matchReference[u]);
+      used[static_cast<std::size_t>(matchKeypoint[u])] = 1;
     }
-    cv::solvePnPRefineLM(obj, img, K, distortion, rvec, tvec);
-    std::vector<cv::Point2f> back;
-    cv::projectPoints(object, rvec, tvec, K, distortion, back);
-    const RigidPose T = poseFrom(rvec, tvec);
-    inliers.clear();
-    for (std::size_t i = 0; i < object.size(); ++i) {
-      const Eigen::Vector3d X(object[i].x, object[i].y, object[i].z);
-      errors[i] = (T * X).z() > 0 ? cv::norm(back[i] - image[i]) : 1e9;
-      if (errors[i] < threshold) inliers.push_back(static_cast<int>(i));
-    }
-    if (static_cast<int>(inliers.size()) < params.minInliers) break;
+    guidedMatches(keypoints, descriptors, rvec, tvec, 2.0 * threshold, guidedMaxDistance, used,
+                  guidedObject, guidedImage, guidedReference);
+    object = std::move(guidedObject);
+    image = std::move(guidedImage);
+    matchReference = std::move(guidedReference);
+    inliers.resize(object.size());
+    std::iota(inliers.begin(), inliers.end(), 0);
+    refine(object, image, threshold, rvec, tvec, inliers, errors);
   }
 
   // Acceptance: enough inliers, a large enough share of the matches, spread over the frame.
+  struct Support {
+    int covered = 0;
+    PoseSpread spread;
+    bool enough = false;
+  };
+  const auto assess = [&] {
+    Support sp;
+    std::vector<bool> cells(kSpreadGrid * kSpreadGrid, false);
+    for (int i : inliers) {
+      const auto u = static_cast<std::size_t>(i);
+      const int cx =
+          std::clamp(static_cast<int>(image[u].x * kSpreadGrid / size.width), 0, kSpreadGrid - 1);
+      const int cy =
+          std::clamp(static_cast<int>(image[u].y * kSpreadGrid / size.height), 0, kSpreadGrid - 1);
+      cells[static_cast<std::size_t>(cy * kSpreadGrid + cx)] = true;
+    }
+    sp.covered = static_cast<int>(std::count(cells.begin(), cells.end(), true));
+    sp.spread = poseSpread(object, image, inliers, rvec, tvec, K, distortion);
+    sp.enough = static_cast<int>(inliers.size()) >= params.minInliers &&
+                sp.covered >= params.minInlierCells && poseFrom(rvec, tvec).allFinite() &&
+                sp.spread.rotationDeg <= params.maxRotationSigmaDeg &&
+                sp.spread.positionOverDepth <= params.maxPositionSigmaRatio;
+    return sp;
+  };
+  const bool firstStage = firstInliers >= params.minInliers && ratio >= params.minInlierRatio;
+  Support support = assess();
+  std::string zoomText;
+  // A pose right but spread too wide is a far view's: the mapped scene fills a small part of the
+  // frame, and its finest map keypoints are below the frame's finest ORB scale. The region the
+  // inliers cover is detected again, magnified up to kMaxZoom, and the keypoints found there are
+  // matched guided by the pose (a second guided pass; the bounds unchanged).
+  if (firstStage && !support.enough && !inliers.empty()) {
+    std::vector<cv::Point2f> inlierPixels;
+    for (int i : inliers) inlierPixels.push_back(image[static_cast<std::size_t>(i)]);
+    const int margin = static_cast<int>(std::ceil(4.0 * threshold));
+    const cv::Rect roi = (cv::boundingRect(inlierPixels) + cv::Size(2 * margin, 2 * margin) -
+                          cv::Point(margin, margin)) &
+                         cv::Rect(cv::Point(0, 0), size);
+    const double zoom =
+        std::min(kMaxZoom, std::sqrt(static_cast<double>(size.area()) / std::max(1, roi.area())));
+    if (zoom >= kMinZoom && roi.area() > 0) {
+      cv::Mat magnified;
+      cv::resize(frame(roi), magnified, cv::Size(), zoom, zoom, cv::INTER_LINEAR);
+      std::vector<cv::KeyPoint> zoomed;
+      cv::Mat zoomedDescriptors;
+      features.detectAndDescribe(magnified, params.featuresPerFrameFor(size), zoomed,
+                                 zoomedDescriptors);
+      for (cv::KeyPoint& k : zoomed) k.pt = magnifiedToFrame(k.pt, zoom, roi.tl());
+      std::vector<cv::Point3f> zObject;
+      std::vector<cv::Point2f> zImage;
+      std::vector<int> zReference;
+      guidedMatches(zoomed, zoomedDescriptors, rvec, tvec, 2.0 * threshold, guidedMaxDistance,
+                    std::vector<char>(zoomed.size(), 0), zObject, zImage, zReference);
+      if (static_cast<int>(zObject.size()) > static_cast<int>(inliers.size())) {
+        cv::Mat zr = rvec.clone(), zt = tvec.clone();
+        std::vector<int> zInliers(zObject.size());
+        std::iota(zInliers.begin(), zInliers.end(), 0);
+        std::vector<double> zErrors;
+        refine(zObject, zImage, threshold, zr, zt, zInliers, zErrors);
+        if (zInliers.size() > inliers.size()) {
+          object = std::move(zObject);
+          image = std::move(zImage);
+          matchReference = std::move(zReference);
+          inliers = std::move(zInliers);
+          errors = std::move(zErrors);
+          rvec = zr;
+          tvec = zt;
+          support = assess();
+          char text[64];
+          std::snprintf(text, sizeof text, ", frame region magnified %.1fx", zoom);
+          zoomText = text;
+        }
+      }
+    }
+  }
+
   const int n = static_cast<int>(inliers.size());
   std::vector<int> perReference(references.size(), 0);
-  std::vector<bool> cells(kSpreadGrid * kSpreadGrid, false);
   double sum2 = 0.0;
   for (int i : inliers) {
     const auto u = static_cast<std::size_t>(i);
     ++perReference[static_cast<std::size_t>(matchReference[u])];
-    const int cx =
-        std::clamp(static_cast<int>(image[u].x * kSpreadGrid / size.width), 0, kSpreadGrid - 1);
-    const int cy =
-        std::clamp(static_cast<int>(image[u].y * kSpreadGrid / size.height), 0, kSpreadGrid - 1);
-    cells[static_cast<std::size_t>(cy * kSpreadGrid + cx)] = true;
     sum2 += errors[u] * errors[u];
   }
-  const int covered = static_cast<int>(std::count(cells.begin(), cells.end(), true));
-  const PoseSpread spread = poseSpread(object, image, inliers, rvec, tvec, K, distortion);
-  const double ratio = static_cast<double>(n) / matches;
   char spreadText[96];
   std::snprintf(spreadText, sizeof spreadText, ", pose sigma %.2f deg, %.2f%% of the depth",
-                spread.rotationDeg, 100.0 * spread.positionOverDepth);
-  const std::string support = std::to_string(n) + " inliers of " + std::to_string(matches) +
-                              " matches, " + std::to_string(covered) + " grid cells" + spreadText;
-  const RigidPose pose = poseFrom(rvec, tvec);
-  if (n < params.minInliers || ratio < params.minInlierRatio || covered < params.minInlierCells ||
-      !pose.allFinite() || !(spread.rotationDeg <= params.maxRotationSigmaDeg) ||
-      !(spread.positionOverDepth <= params.maxPositionSigmaRatio)) {
-    out.message = "not enough support (" + support + ")";
+                support.spread.rotationDeg, 100.0 * support.spread.positionOverDepth);
+  const std::string supportText =
+      std::to_string(n) + " inliers (" + std::to_string(firstInliers) + " of " +
+      std::to_string(matches) + " matches before guided matching), " +
+      std::to_string(support.covered) + " grid cells" + spreadText + zoomText;
+  if (!firstStage || !support.enough) {
+    out.message = "not enough support (" + supportText + ")";
     return out;
   }
   RelocalisationCandidate c;
-  c.worldToCamera = pose;
+  c.worldToCamera = poseFrom(rvec, tvec);
   const auto bestRef = std::max_element(perReference.begin(), perReference.end());
   c.reference = references[static_cast<std::size_t>(bestRef - perReference.begin())].view;
   c.inliers = n;
-  c.matches = matches;
+  c.matches = static_cast<int>(object.size());
   c.reprojectionRmsPx = std::sqrt(sum2 / n);
   out.candidate = c;
-  out.message = "relocalised on reference " + std::to_string(c.reference) + " (" + support + ")";
+  out.message =
+      "relocalised on reference " + std::to_string(c.reference) + " (" + supportText + ")";
   return out;
 }
 

@@ -89,6 +89,8 @@ TEST(OrbPnpColdStart, LocatesRandomViewsAgainstAnExactMap) {
   // views, and a pose it reports within a few pixels (PnP on >= 20 inliers of ORB keypoints).
   EXPECT_GE(found, trials / 2);
   EXPECT_GE(close, found - 1);
+  // A black frame has no keypoints: no pose.
+  EXPECT_FALSE(baseline.locate(cv::Mat::zeros(sim.camera().imageSize(), CV_8UC1)).worldToCamera);
 }
 
 TEST(OrbPnpColdStart, RejectsAMapWithoutOrbKeypoints) {
