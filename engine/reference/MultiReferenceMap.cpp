@@ -172,14 +172,7 @@ void MultiReferenceMap::save(const std::filesystem::path& folder) const {
 MultiReferenceMap MultiReferenceMap::load(const std::filesystem::path& folder) {
   const std::filesystem::path file = folder / kFileName;
   const std::string where = "reference map '" + file.string() + "'";
-  if (!std::filesystem::exists(file))
-    throw Error(where + " does not exist (run `reftrack prepare` first)");
-  cv::FileStorage fs;
-  try {
-    if (!fs.open(file.string(), cv::FileStorage::READ)) throw Error(where + " cannot be opened");
-  } catch (const cv::Exception& e) {
-    throw Error(where + " is corrupt or truncated: " + e.err);
-  }
+  cv::FileStorage fs = openReferenceMapFile(file);
   int version = 0;
   try {
     const cv::FileNode format = fs["format"], versionNode = fs["version"];

@@ -35,6 +35,19 @@ void checkCorners(const std::vector<ReferenceCorner>& corners, const char* name,
 
 }  // namespace
 
+cv::FileStorage openReferenceMapFile(const std::filesystem::path& file) {
+  const std::string where = "reference map '" + file.string() + "'";
+  if (!std::filesystem::exists(file))
+    throw Error(where + " does not exist (run `reftrack prepare` first)");
+  cv::FileStorage fs;
+  try {
+    if (!fs.open(file.string(), cv::FileStorage::READ)) throw Error(where + " cannot be opened");
+  } catch (const cv::Exception& e) {
+    throw Error(where + " is corrupt or truncated: " + e.err);
+  }
+  return fs;
+}
+
 void ReferenceMap::check() const {
   camera.check();
   if (!T_A.allFinite() || !T_B.allFinite()) throw Error("reference poses T_A/T_B are not finite");
@@ -109,14 +122,7 @@ void ReferenceMap::save(const std::filesystem::path& folder) const {
 ReferenceMap ReferenceMap::load(const std::filesystem::path& folder) {
   const std::filesystem::path file = folder / kFileName;
   const std::string where = "reference map '" + file.string() + "'";
-  if (!std::filesystem::exists(file))
-    throw Error(where + " does not exist (run `reftrack prepare` first)");
-  cv::FileStorage fs;
-  try {
-    if (!fs.open(file.string(), cv::FileStorage::READ)) throw Error(where + " cannot be opened");
-  } catch (const cv::Exception& e) {
-    throw Error(where + " is corrupt or truncated: " + e.err);
-  }
+  cv::FileStorage fs = openReferenceMapFile(file);
   ReferenceMap map;
   try {
     const auto need = [&](const char* key) {

@@ -47,4 +47,8 @@ class ReferenceMap {
   static ReferenceMap load(const std::filesystem::path& folder);
 };
 
+// Opens a map.yml (either format version) for reading; throws reftrack::Error naming the file
+// when it is missing, cannot be opened or is corrupt.
+cv::FileStorage openReferenceMapFile(const std::filesystem::path& file);
+
 }  // namespace reftrack

@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include "engine/reference/MultiViewTriangulator.hpp"
+
 namespace reftrack {
 
 TwoViewTriangulator::TwoViewTriangulator(const Eigen::Matrix3d& K, const RigidPose& T_AB)
@@ -27,23 +29,8 @@ Eigen::Vector3d TwoViewTriangulator::linear(const Eigen::Vector2d& pA,
 
 Eigen::Vector3d TwoViewTriangulator::refine(const Eigen::Vector2d& pA, const Eigen::Vector2d& pB,
                                             const Eigen::Vector3d& initial) const {
-  double P[3] = {initial.x(), initial.y(), initial.z()};
-  ceres::Problem problem;
-  problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PointReprojectionCost, 2, 3>(
-                               new PointReprojectionCost(K_, RigidPose(), pA)),
-                           nullptr, P);
-  problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PointReprojectionCost, 2, 3>(
-                               new PointReprojectionCost(K_, T_AB_, pB)),
-                           nullptr, P);
-  ceres::Solver::Options options;
-  options.linear_solver_type = ceres::DENSE_QR;
-  options.max_num_iterations = 20;
-  options.function_tolerance = 1e-12;
-  options.parameter_tolerance = 1e-12;
-  options.num_threads = 1;
-  ceres::Solver::Summary summary;
-  ceres::Solve(options, &problem, &summary);
-  return {P[0], P[1], P[2]};
+  // Eq. 10 with A as the world frame: the N-view refinement on the two views.
+  return MultiViewTriangulator(K_).refine({{RigidPose(), pA}, {T_AB_, pB}}, initial);
 }
 
 double TwoViewTriangulator::reprojectionErrorA(const Eigen::Vector3d& P,
