@@ -1,0 +1,79 @@
+#pragma once
+// reftrack::Tracker — the stable entry point for a program that only wants poses. Open it on a
+// map folder written by `reftrack prepare` (6-DOF: the paper's two-reference tracker on the best
+// pair of the map's N references, relocalising after a loss) or on one reference image
+// (homography mode, paper Sec. 3.2), then call track() once per frame, in order. Frames are 8-bit
+// BGR or grey of the map's (reference's) image size. Every failure — a missing or bad map, image,
+// camera or parameter file, a frame of another size — throws reftrack::Error with the reason.
+// Poses follow SPEC.md: world -> camera, X_camera = R * X_world + t, world = the marker's frame.
+#include <Eigen/Core>
+#include <filesystem>
+#include <memory>
+#include <opencv2/core.hpp>
+#include <optional>
+#include <string>
+
+#include "engine/geometry/RigidPose.hpp"
+
+namespace reftrack {
+
+struct TrackerParams;
+
+struct TrackerOptions {
+  std::filesystem::path params;       // TrackerParams YAML (`--params`); empty = defaults
+  std::filesystem::path motionModel;  // fitted motion model (`fit-motion --out`); empty = none
+};
+
+class Tracker {
+ public:
+  enum class Mode { SixDof, Homography };
+  enum class State { Initialising, Tracking, Lost };  // Initialising: no pose since open/reset
+
+  struct Result {
+    State state = State::Initialising;
+    std::string reason;   // why not tracking; while tracking, how the pose was found, if notable
+    int frameIndex = -1;  // 0 for the first track() call after open or reset()
+    // 6-DOF, set while tracking. Homography mode with a camera: the rotation-only pose of a
+    // camera turning about its centre (world = the reference camera's frame, t = 0).
+    std::optional<RigidPose> worldToCamera;
+    // 6-DOF: covariance of worldToCamera's 6-vector (t_x, t_y, t_z, r_x, r_y, r_z), r axis-angle
+    // (metres, radians): the tracker's Omega_k (paper Sec. 5) propagated to the world frame.
+    std::optional<Eigen::Matrix<double, 6, 6>> covariance;
+    std::optional<cv::Matx33d> homography;  // homography mode: reference pixel -> frame pixel
+    int inliers = 0;                        // matches supporting the result
+    int referenceA = -1, referenceB = -1;   // 6-DOF: the pair of references in use (-1: none)
+    bool relocalised = false;               // 6-DOF: this pose came from the relocaliser
+    double milliseconds = 0.0;              // time spent in track()
+  };
+
+  // 6-DOF tracking against a prepared map (format 2, or a version-1 two-reference map).
+  static Tracker openMap(const std::filesystem::path& mapFolder, const TrackerOptions& = {});
+  static Tracker openMap(const std::filesystem::path& mapFolder, const TrackerParams& params);
+  // Homography mode against one stored frame; cameraFile (camera.yml, optional) enables the
+  // rotation-only model and the rotation pose.
+  static Tracker openReference(const std::filesystem::path& referenceImage,
+                               const std::filesystem::path& cameraFile = {},
+                               const TrackerOptions& = {});
+  static Tracker openReference(const cv::Mat& reference, const std::optional<Eigen::Matrix3d>& K,
+                               const TrackerParams& params);
+
+  Tracker(Tracker&&) noexcept;
+  Tracker& operator=(Tracker&&) noexcept;
+  ~Tracker();
+
+  Result track(const cv::Mat& frame);
+  void reset();  // forget the past: the next frame is tracked as a first one (frameIndex 0)
+
+  Mode mode() const;
+  cv::Size imageSize() const;                     // the size track() accepts
+  std::optional<Eigen::Matrix3d> camera() const;  // K, when known
+
+ private:
+  struct Impl;
+  explicit Tracker(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+const char* toString(Tracker::State state);  // "initialising", "tracking", "lost"
+
+}  // namespace reftrack

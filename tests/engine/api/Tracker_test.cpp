@@ -1,0 +1,254 @@
+#include "engine/api/Tracker.hpp"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <opencv2/imgcodecs.hpp>
+#include <set>
+
+#include "TestPaths.hpp"
+#include "engine/config/TrackerParams.hpp"
+#include "engine/core/Error.hpp"
+#include "engine/features/SyntheticImages.hpp"
+#include "engine/geometry/PinholeCamera.hpp"
+#include "engine/relocalisation/Relocaliser.hpp"
+#include "engine/tracking/MultiReferenceTracker.hpp"
+#include "engine/tracking/PlaneMultiWorld.hpp"
+
+namespace reftrack {
+namespace {
+
+using test::PlaneMultiWorld;
+
+// Four references 0.2 m apart along x looking at a textured plane (exact ground truth), with
+// the relocaliser's keypoint layer, saved as a map folder the way `reftrack prepare` leaves one.
+struct SavedMap {
+  PlaneMultiWorld world{{-0.3, -0.1, 0.1, 0.3}};
+  std::filesystem::path folder;
+  explicit SavedMap(const std::string& name) : folder(test::freshTempDir(name) / "map") {
+    MultiReferenceMap map = world.map();
+    buildReferenceKeypoints(map, RelocalisationParams{});
+    map.save(folder);
+  }
+};
+
+// The camera (A -> camera) at x along the references' line, bobbing up and down and in depth.
+RigidPose along(double x, int k) {
+  return PlaneMultiWorld::cameraAt(x, 0.02 * std::sin(0.3 * k), 0.03 * std::sin(0.17 * k));
+}
+
+double translationErrorMm(const RigidPose& estimate, const RigidPose& truth) {
+  return RigidPose::translationDistance(estimate, truth) * 1000.0;
+}
+double rotationErrorDeg(const RigidPose& estimate, const RigidPose& truth) {
+  return RigidPose::rotationDistance(estimate, truth) * 180.0 / CV_PI;
+}
+
+// A path across three pairs of references: every frame tracked from the saved map, each pose
+// within MultiReferenceTracker_test's tolerances of the exact ground truth (2 mm / 0.1 degree for
+// ~150 matches of 0.1-0.2 px noise at ~1 m), with a symmetric positive definite covariance.
+TEST(Tracker, TracksFromASavedMapAgainstExactGroundTruth) {
+  const SavedMap saved("api_tracker_map");
+  Tracker tracker = Tracker::openMap(saved.folder);
+  EXPECT_EQ(tracker.mode(), Tracker::Mode::SixDof);
+  EXPECT_EQ(tracker.imageSize(), saved.world.size);
+  ASSERT_TRUE(tracker.camera().has_value());
+  EXPECT_TRUE(tracker.camera()->isApprox(saved.world.K));
+  double maxT = 0.0, maxR = 0.0, sumSquaredZ = 0.0;
+  std::set<int> referencesUsed;
+  for (int k = 0; k < 40; ++k) {
+    const RigidPose truth = saved.world.worldToCamera(along(-0.28 + 0.014 * k, k));
+    const Tracker::Result r =
+        tracker.track(saved.world.render(along(-0.28 + 0.014 * k, k), 100 + k));
+    ASSERT_EQ(r.state, Tracker::State::Tracking) << k << ": " << r.reason;
+    EXPECT_EQ(r.frameIndex, k);
+    ASSERT_TRUE(r.worldToCamera && r.covariance) << k;
+    EXPECT_FALSE(r.homography.has_value());
+    EXPECT_GE(r.inliers, 15) << k;  // PoseTrackerLimits::minInliers
+    EXPECT_GT(r.milliseconds, 0.0);
+    referencesUsed.insert(r.referenceA);
+    referencesUsed.insert(r.referenceB);
+    // Error over predicted SD, per component of (t, r).
+    const Vector6d dx = r.worldToCamera->toVector6() - truth.toVector6();
+    sumSquaredZ += dx.cwiseQuotient(r.covariance->diagonal().cwiseSqrt()).squaredNorm();
+    maxT = std::max(maxT, translationErrorMm(*r.worldToCamera, truth));
+    maxR = std::max(maxR, rotationErrorDeg(*r.worldToCamera, truth));
+    const Eigen::Matrix<double, 6, 6>& C = *r.covariance;
+    EXPECT_LT((C - C.transpose()).norm(), 1e-12 * C.norm()) << k;
+    EXPECT_EQ(Eigen::LLT<Matrix6d>(C).info(), Eigen::Success) << k;
+  }
+  EXPECT_GE(referencesUsed.size(), 3u);  // x from -0.28 to 0.27: at least two pairs
+  EXPECT_LT(maxT, 2.0);
+  EXPECT_LT(maxR, 0.1);
+  // The covariance predicts the spread of the error to within a small factor: the RMS of error /
+  // predicted SD over the 6 components of the 40 frames measured 2.3 (Omega_k counts the frame's
+  // corner noise, not the map's: the map points come from noisy reference corners).
+  const double rmsZ = std::sqrt(sumSquaredZ / (6.0 * 40.0));
+  EXPECT_GT(rmsZ, 0.5);
+  EXPECT_LT(rmsZ, 5.0);
+  RecordProperty("rms_error_over_predicted_sd", std::to_string(rmsZ));
+  RecordProperty("max_translation_error_mm", std::to_string(maxT));
+  RecordProperty("max_rotation_error_deg", std::to_string(maxR));
+}
+
+// The covariance is the tracker's Omega_k of x_Ak (pose relative to reference A) carried to the
+// world -> camera 6-vector: compared with J Omega_k J^T, J by central differences of
+// x_Ak -> vec6(T(x_Ak) T_A) — an independent route to the same first-order propagation.
+TEST(Tracker, CovarianceIsTheTrackersOmegaCarriedToTheWorldFrame) {
+  const SavedMap saved("api_tracker_covariance");
+  const int frames = 6;
+  std::vector<MultiReferenceResult> expected;
+  {
+    MultiReferenceTracker direct(MultiReferenceMap::load(saved.folder), TrackerParams{});
+    for (int k = 0; k < frames; ++k)
+      expected.push_back(direct.process(saved.world.render(along(-0.2 + 0.01 * k, k), 300 + k)));
+  }
+  Tracker tracker = Tracker::openMap(saved.folder);
+  for (int k = 0; k < frames; ++k) {
+    const Tracker::Result r = tracker.track(saved.world.render(along(-0.2 + 0.01 * k, k), 300 + k));
+    const PoseTrackingResult& e = expected[static_cast<std::size_t>(k)].tracking;
+    ASSERT_EQ(r.state, Tracker::State::Tracking) << k << ": " << r.reason;
+    ASSERT_TRUE(e.worldToCamera && e.T_Ak && r.worldToCamera && r.covariance) << k;
+    // The same tracker on the same frames: the same pose (deterministic to rounding).
+    EXPECT_LT(translationErrorMm(*r.worldToCamera, *e.worldToCamera), 1e-6) << k;
+    const RigidPose T_A = e.T_Ak->inverse() * *e.worldToCamera;
+    const Vector6d x = e.T_Ak->toVector6();
+    Matrix6d J;
+    const double h = 1e-6;
+    for (int i = 0; i < 6; ++i) {
+      Vector6d plus = x, minus = x;
+      plus[i] += h;
+      minus[i] -= h;
+      J.col(i) = ((RigidPose::fromVector6(plus) * T_A).toVector6() -
+                  (RigidPose::fromVector6(minus) * T_A).toVector6()) /
+                 (2.0 * h);
+    }
+    const Matrix6d want = J * e.covariance * J.transpose();
+    // Central differences of a smooth map at h = 1e-6: ~1e-9 relative error in J.
+    EXPECT_LT((*r.covariance - want).norm(), 1e-6 * want.norm()) << k << "\n" << *r.covariance;
+  }
+}
+
+// A first frame far from the first pair, rolled 35 degrees: the relocaliser places it (exact pose
+// within 2 mm / 0.1 degree, as above); a black frame is lost with a reason and no pose; reset()
+// starts counting frames again.
+TEST(Tracker, RelocalisesReportsLostFramesAndResets) {
+  const SavedMap saved("api_tracker_lost");
+  Tracker tracker = Tracker::openMap(saved.folder);
+  const RigidPose roll(Eigen::AngleAxisd(35.0 * CV_PI / 180.0, Eigen::Vector3d::UnitZ()).matrix(),
+                       Eigen::Vector3d::Zero());
+  const RigidPose fromA = roll * PlaneMultiWorld::cameraAt(0.27, 0.02, -0.15);
+  const RigidPose truth = saved.world.worldToCamera(fromA);
+  const Tracker::Result first = tracker.track(saved.world.render(fromA, 500));
+  ASSERT_EQ(first.state, Tracker::State::Tracking) << first.reason;
+  EXPECT_TRUE(first.relocalised);
+  EXPECT_EQ(first.reason, "relocalised");
+  EXPECT_LT(translationErrorMm(*first.worldToCamera, truth), 2.0);
+  EXPECT_LT(rotationErrorDeg(*first.worldToCamera, truth), 0.1);
+
+  const Tracker::Result black =
+      tracker.track(cv::Mat(saved.world.size, CV_8UC3, cv::Scalar::all(0)));
+  EXPECT_EQ(black.state, Tracker::State::Lost);
+  EXPECT_STREQ(toString(black.state), "lost");
+  EXPECT_FALSE(black.reason.empty());
+  EXPECT_FALSE(black.worldToCamera.has_value());
+  EXPECT_FALSE(black.covariance.has_value());
+  EXPECT_EQ(black.frameIndex, 1);
+
+  tracker.reset();
+  const Tracker::Result again =
+      tracker.track(cv::Mat(saved.world.size, CV_8UC3, cv::Scalar::all(0)));
+  EXPECT_EQ(again.frameIndex, 0);
+  EXPECT_NE(again.state, Tracker::State::Tracking);
+  EXPECT_THROW(tracker.track(cv::Mat(240, 320, CV_8UC3, cv::Scalar::all(0))), Error);
+  EXPECT_THROW(tracker.track(cv::Mat()), Error);
+}
+
+// Rotation-only camera (any scene): frame k = the reference through H_k = K R_k K^-1.
+Eigen::Matrix3d panTilt(int k) {
+  return (Eigen::AngleAxisd(0.004 * k, Eigen::Vector3d::UnitY()) *
+          Eigen::AngleAxisd(-0.002 * k, Eigen::Vector3d::UnitX()))
+      .matrix();
+}
+cv::Matx33d homographyOf(const Eigen::Matrix3d& K, const Eigen::Matrix3d& R) {
+  const Eigen::Matrix3d H = K * R * K.inverse();
+  cv::Matx33d out;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) out(r, c) = H(r, c);
+  return out;
+}
+
+// Homography mode from files (reference image + camera.yml): an unrelated first frame is still
+// initialising, the panning frames are registered (HomographyTracker_test's bound: image-corner
+// error < 0.8 px at noise SD 2) with the rotation pose, and an unrelated frame after them is lost.
+TEST(Tracker, HomographyModeFromAReferenceImageAndCamera) {
+  const std::filesystem::path dir = test::freshTempDir("api_tracker_homography");
+  const cv::Size size(320, 240);
+  Eigen::Matrix3d K;
+  K << 300, 0, 159.5, 0, 300, 119.5, 0, 0, 1;
+  const cv::Mat reference = test::texturedImage(size, 31);
+  ASSERT_TRUE(cv::imwrite((dir / "reference.png").string(), reference));
+  PinholeCamera(K, size).save(dir / "camera.yml");
+  Tracker tracker = Tracker::openReference(dir / "reference.png", dir / "camera.yml");
+  EXPECT_EQ(tracker.mode(), Tracker::Mode::Homography);
+  EXPECT_EQ(tracker.imageSize(), size);
+
+  const Tracker::Result unrelated = tracker.track(test::texturedImage(size, 99));
+  EXPECT_EQ(unrelated.state, Tracker::State::Initialising);
+  EXPECT_FALSE(unrelated.reason.empty());
+  EXPECT_FALSE(unrelated.homography.has_value());
+
+  double worstPx = 0.0, worstDeg = 0.0;
+  for (int k = 1; k <= 12; ++k) {
+    const cv::Matx33d truth = homographyOf(K, panTilt(k));
+    const Tracker::Result r =
+        tracker.track(test::withNoise(test::warpedBy(reference, truth), 2.0, k));
+    ASSERT_EQ(r.state, Tracker::State::Tracking) << k << ": " << r.reason;
+    ASSERT_TRUE(r.homography && r.worldToCamera) << k;
+    EXPECT_FALSE(r.covariance.has_value());
+    EXPECT_EQ(r.worldToCamera->translation().norm(), 0.0);
+    worstPx = std::max(worstPx, test::cornerError(*r.homography, truth, size));
+    worstDeg = std::max(worstDeg, rotationErrorDeg(*r.worldToCamera, RigidPose(panTilt(k), {})));
+  }
+  EXPECT_LT(worstPx, 0.8);
+  // 0.8 px at the image corners, ~200 px from the centre at f = 300: at most ~0.15 degree.
+  EXPECT_LT(worstDeg, 0.15);
+  RecordProperty("max_corner_error_px", std::to_string(worstPx));
+  RecordProperty("max_rotation_error_deg", std::to_string(worstDeg));
+
+  const Tracker::Result lost = tracker.track(test::texturedImage(size, 98));
+  EXPECT_EQ(lost.state, Tracker::State::Lost);
+  EXPECT_FALSE(lost.reason.empty());
+}
+
+TEST(Tracker, BadInputsAreClearErrors) {
+  const std::filesystem::path dir = test::freshTempDir("api_tracker_errors");
+  const auto message = [](const auto& open) {
+    try {
+      open();
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message([&] { Tracker::openMap(dir / "missing"); }).find("missing"), std::string::npos);
+  EXPECT_NE(message([&] { Tracker::openReference(dir / "nothing.png"); }).find("nothing.png"),
+            std::string::npos);
+  const cv::Mat reference = test::texturedImage({320, 240}, 32);
+  ASSERT_TRUE(cv::imwrite((dir / "reference.png").string(), reference));
+  PinholeCamera::fromFieldOfView({640, 480}, 60.0).save(dir / "camera.yml");
+  EXPECT_NE(message([&] {
+              Tracker::openReference(dir / "reference.png", dir / "camera.yml");
+            }).find("640x480"),
+            std::string::npos);
+  TrackerOptions options;
+  options.params = dir / "absent.yml";
+  EXPECT_NE(message([&] {
+              Tracker::openReference(dir / "reference.png", {}, options);
+            }).find("absent.yml"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace reftrack
