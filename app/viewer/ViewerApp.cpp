@@ -12,11 +12,13 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <iostream>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "app/cli/ProgressBar.hpp"
 #include "app/sources/FrameGrabber.hpp"
+#include "app/sources/LoopingFrameSource.hpp"
 #include "app/sources/SimulatorSource.hpp"
 #include "app/viewer/CalibrationPanel.hpp"
 #include "app/viewer/LiveCalibration.hpp"
@@ -62,6 +64,10 @@ void ViewerOptions::check() const {
     throw Error("--calibration-out needs --calibrate BOARD");
   if (!calibrationOut.empty() && !headless)
     throw Error("--calibration-out applies to --headless runs (the window has a Save button)");
+  if (loops < 1) throw Error("--loop must be at least 1");
+  if (reportEvery < 0) throw Error("--report-every must not be negative");
+  if (reportEvery > 0 && !headless) throw Error("--report-every applies to --headless runs");
+  if (soakWarmup < 0) throw Error("--soak-warmup must not be negative");
 }
 
 bool windowSystemAvailable() {
@@ -123,6 +129,8 @@ Session openSession(const ViewerOptions& options, ViewerState& state) {
   if (!options.params.empty()) state.paramsPath = options.params.string();
 
   std::unique_ptr<FrameSource> source = openFrameSource(options.input, options.source);
+  if (options.loops > 1)
+    source = std::make_unique<LoopingFrameSource>(std::move(source), options.loops);
   const auto* sim = dynamic_cast<const SimulatorSource*>(source.get());
   std::string cameraName;
   // Calibrating without a camera file: K is guessed from the first frame's size below, and no
@@ -436,6 +444,8 @@ ViewerRunSummary runHeadless(const ViewerOptions& options, render::GlContext& co
       total ? std::make_unique<ProgressBar>("view", static_cast<std::size_t>(*total)) : nullptr;
 
   ViewerRunSummary summary;
+  std::optional<SoakMonitor> soak;
+  if (options.reportEvery > 0) soak.emplace(options.reportEvery, options.soakWarmup, &std::cout);
   cv::Mat lastCanvas;
   loop.process(std::move(session.first));
   for (;;) {
@@ -460,6 +470,7 @@ ViewerRunSummary runHeadless(const ViewerOptions& options, render::GlContext& co
     lastCanvas = canvas.readColourBgr();
     loop.record(lastCanvas);
     if (progress) progress->advance();
+    if (soak) soak->frameDone();
     if (options.maxFrames > 0 && loop.processed >= options.maxFrames) break;
     if (!loop.advance()) break;
   }
@@ -486,6 +497,7 @@ ViewerRunSummary runHeadless(const ViewerOptions& options, render::GlContext& co
   summary.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   summary.sourceFps = state.source.fps;
   summary.backend = context.backendName();
+  if (soak) summary.soak = soak->summary();
   return summary;
 }
 
