@@ -34,11 +34,16 @@ log="$out/soak.log"
   --soak-warmup 1000 | tee "$log"
 summary="$(grep '^soak: memory' "$log")"
 growth="$(sed -E 's/.*growth ([-+0-9.]+) MiB.*/\1/' <<< "$summary")"
-ratio="$(sed -E 's/.*ratio ([0-9.]+)\).*/\1/' <<< "$summary")"
-echo "soak.sh: $frames frames, memory growth after warm-up $growth MiB (limit 2), last/first rate $ratio (limit 0.90-1.10)"
-if awk -v g="$growth" -v r="$ratio" 'BEGIN { exit !(g < 2.0 && r >= 0.9 && r <= 1.1) }'; then
-  echo "soak.sh: PASS"
-else
-  echo "soak.sh: FAIL" >&2
-  exit 1
-fi
+ratio="$(sed -E 's/.*fr\/s \(ratio ([0-9.]+)\);.*/\1/' <<< "$summary")"
+cpu_ratio="$(sed -E 's/.*ms\/fr \(ratio ([0-9.]+)\).*/\1/' <<< "$summary")"
+echo "soak.sh: $frames frames; memory growth after warm-up $growth MiB (limit 2);" \
+  "last/first frame rate $ratio, CPU time per frame $cpu_ratio (limit 0.90-1.10)"
+# The wall-clock rate is the issue's measure; on a shared machine other processes' load moves it,
+# so the CPU time per frame (this process only) is judged beside it and a failure says which.
+verdict=0
+awk -v g="$growth" 'BEGIN { exit !(g < 2.0) }' || { echo "soak.sh: memory grew" >&2; verdict=1; }
+awk -v r="$ratio" 'BEGIN { exit !(r >= 0.9 && r <= 1.1) }' ||
+  { echo "soak.sh: the frame rate moved by more than 10% (check the machine's load)" >&2; verdict=1; }
+awk -v r="$cpu_ratio" 'BEGIN { exit !(r >= 0.9 && r <= 1.1) }' ||
+  { echo "soak.sh: CPU time per frame moved by more than 10%" >&2; verdict=1; }
+if (( verdict == 0 )); then echo "soak.sh: PASS"; else echo "soak.sh: FAIL" >&2; exit 1; fi

@@ -1,5 +1,6 @@
 #include "app/viewer/SoakMonitor.hpp"
 
+#include <time.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -19,11 +20,18 @@ std::optional<double> residentMemoryMiB() {
   return static_cast<double>(residentPages) * static_cast<double>(pageBytes) / (1024.0 * 1024.0);
 }
 
+double processCpuSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
 SoakMonitor::SoakMonitor(int interval, int warmup, std::ostream* out)
     : interval_(interval),
       warmup_(warmup),
       out_(out),
-      intervalStart_(std::chrono::steady_clock::now()) {
+      intervalStart_(std::chrono::steady_clock::now()),
+      intervalCpuStart_(processCpuSeconds()) {
   if (interval < 1) throw Error("soak report interval must be at least 1 frame");
   if (warmup < 0) throw Error("soak warm-up must not be negative");
 }
@@ -34,15 +42,20 @@ void SoakMonitor::frameDone() {
   const auto now = std::chrono::steady_clock::now();
   const double seconds = std::chrono::duration<double>(now - intervalStart_).count();
   intervalStart_ = now;
+  const double cpu = processCpuSeconds();
+  const double cpuSeconds = cpu - intervalCpuStart_;
+  intervalCpuStart_ = cpu;
   SoakSample s;
   s.frames = frames_;
   s.residentMiB = residentMemoryMiB().value_or(0.0);
   s.framesPerSecond = seconds > 0 ? interval_ / seconds : 0.0;
+  s.cpuMsPerFrame = 1000.0 * cpuSeconds / interval_;
   samples_.push_back(s);
   if (out_) {
-    char line[160];
-    std::snprintf(line, sizeof line, "soak: frame %7d  resident %8.1f MiB  rate %7.1f fr/s%s\n",
-                  s.frames, s.residentMiB, s.framesPerSecond,
+    char line[200];
+    std::snprintf(line, sizeof line,
+                  "soak: frame %7d  resident %8.1f MiB  rate %7.1f fr/s  cpu %7.2f ms/fr%s\n",
+                  s.frames, s.residentMiB, s.framesPerSecond, s.cpuMsPerFrame,
                   s.frames <= warmup_ ? "  (warm-up)" : "");
     *out_ << line << std::flush;
   }
@@ -66,6 +79,9 @@ SoakSummary SoakMonitor::summary() const {
   r.firstRate = first->framesPerSecond;
   r.lastRate = samples_.back().framesPerSecond;
   r.rateRatio = r.firstRate > 0 ? r.lastRate / r.firstRate : 0.0;
+  r.firstCpuMs = first->cpuMsPerFrame;
+  r.lastCpuMs = samples_.back().cpuMsPerFrame;
+  r.cpuRatio = r.firstCpuMs > 0 ? r.lastCpuMs / r.firstCpuMs : 0.0;
   return r;
 }
 
@@ -75,12 +91,13 @@ void printSoakSummary(std::ostream& out, const SoakSummary& s) {
         << "-frame warm-up for a verdict (need two report intervals)\n";
     return;
   }
-  char line[320];
+  char line[400];
   std::snprintf(line, sizeof line,
                 "soak: memory after warm-up %.1f MiB, end %.1f MiB (growth %+.2f MiB, peak %.1f "
-                "MiB); rate first %.1f fr/s, last %.1f fr/s (ratio %.3f)\n",
+                "MiB); rate first %.1f fr/s, last %.1f fr/s (ratio %.3f); cpu first %.2f ms/fr, "
+                "last %.2f ms/fr (ratio %.3f)\n",
                 s.residentAfterWarmupMiB, s.residentEndMiB, s.growthMiB, s.peakMiB, s.firstRate,
-                s.lastRate, s.rateRatio);
+                s.lastRate, s.rateRatio, s.firstCpuMs, s.lastCpuMs, s.cpuRatio);
   out << line;
 }
 

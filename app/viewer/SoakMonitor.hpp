@@ -12,11 +12,15 @@ namespace reftrack::app {
 
 // Resident set size of this process in MiB (Linux /proc/self/statm); nullopt where unavailable.
 std::optional<double> residentMemoryMiB();
+// CPU time used by this process so far (all threads), in seconds.
+double processCpuSeconds();
 
 struct SoakSample {
   int frames = 0;              // frames processed when sampled
   double residentMiB = 0;      // resident memory then
-  double framesPerSecond = 0;  // rate over the interval that ended here
+  double framesPerSecond = 0;  // rate over the interval that ended here (wall clock)
+  double cpuMsPerFrame = 0;    // process CPU time per frame over that interval (all threads):
+                               // unlike the rate, unaffected by other processes' load
 };
 
 struct SoakSummary {
@@ -26,6 +30,7 @@ struct SoakSummary {
   double residentAfterWarmupMiB = 0, residentEndMiB = 0, growthMiB = 0, peakMiB = 0;
   // Rate of the first interval after warm-up and of the last interval; ratio = last / first.
   double firstRate = 0, lastRate = 0, rateRatio = 0;
+  double firstCpuMs = 0, lastCpuMs = 0, cpuRatio = 0;  // the same for CPU ms per frame
   bool complete = false;  // at least two samples after warm-up (otherwise the figures are unset)
 };
 
@@ -42,6 +47,7 @@ class SoakMonitor {
   std::ostream* out_;
   int frames_ = 0;
   std::chrono::steady_clock::time_point intervalStart_;
+  double intervalCpuStart_ = 0;
   std::vector<SoakSample> samples_;
 };
 

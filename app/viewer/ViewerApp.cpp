@@ -16,6 +16,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "app/cli/Interruption.hpp"
 #include "app/cli/ProgressBar.hpp"
 #include "app/sources/FrameGrabber.hpp"
 #include "app/sources/LoopingFrameSource.hpp"
@@ -447,6 +448,10 @@ ViewerRunSummary runHeadless(const ViewerOptions& options, render::GlContext& co
   std::optional<SoakMonitor> soak;
   if (options.reportEvery > 0) soak.emplace(options.reportEvery, options.soakWarmup, &std::cout);
   cv::Mat lastCanvas;
+  // Ctrl-C, or a frame that cannot be read or used mid-stream while recording, ends the loop
+  // like the end of the input: the recording is finished up to the last frame drawn.
+  const InterruptibleWork interruptible;
+  std::string streamError;
   loop.process(std::move(session.first));
   for (;;) {
     loop.updateCalibration();
@@ -472,10 +477,20 @@ ViewerRunSummary runHeadless(const ViewerOptions& options, render::GlContext& co
     if (progress) progress->advance();
     if (soak) soak->frameDone();
     if (options.maxFrames > 0 && loop.processed >= options.maxFrames) break;
-    if (!loop.advance()) break;
+    if (interruptRequested()) break;
+    try {
+      if (!loop.advance()) break;
+    } catch (const Error& e) {
+      if (!loop.recorder) throw;
+      streamError = e.what();
+      break;
+    }
   }
   if (progress) progress->finish();
   std::tie(summary.recording, summary.trajectory) = loop.stopRecording();
+  if (!streamError.empty())
+    throw Error(streamError + " (the recording '" + summary.recording.string() +
+                "' holds every frame before it)");
   if (!options.screenshot.empty()) {
     writeScreenshot(options.screenshot, lastCanvas);
     summary.screenshot = options.screenshot;
@@ -520,9 +535,10 @@ ViewerRunSummary runWindow(const ViewerOptions& options, render::GlfwWindowConte
   bool newFrame = true;  // the current frame still has to be recorded
   Clock::time_point due = Clock::now();
   bool finishing = false;
+  const InterruptibleWork interruptible;  // Ctrl-C closes the window like its close button
   while (true) {
     window.pollEvents();
-    if (window.shouldClose()) finishing = true;
+    if (window.shouldClose() || interruptRequested()) finishing = true;
 
     // Carry out the panels' requests.
     loop.applyTrackerParams();
