@@ -1,9 +1,11 @@
 #include "app/cli/CommandLine.hpp"
 
 #include <algorithm>
+#include <csignal>
 #include <iostream>
 #include <opencv2/core.hpp>
 
+#include "app/cli/Interruption.hpp"
 #include "app/commands/Commands.hpp"
 #include "engine/core/Error.hpp"
 
@@ -51,10 +53,17 @@ int runCommandLine(int argc, char** argv) {
     return 2;
   }
 
+  installInterruptHandlers();
   for (CommandRegistration& c : commands) {
     if (!c.subcommand->parsed()) continue;
     try {
       c.action();
+      if (const int signal = interruptSignal(); signal != 0) {
+        std::cerr << "reftrack " << c.subcommand->get_name() << ": interrupted by "
+                  << (signal == SIGINT ? "SIGINT" : "SIGTERM")
+                  << "; outputs are complete up to the last frame handled\n";
+        return 128 + signal;
+      }
       return 0;
     } catch (const reftrack::Error& e) {
       std::cerr << "reftrack " << c.subcommand->get_name() << ": error: " << e.what() << "\n";

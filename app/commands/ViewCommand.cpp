@@ -76,6 +76,15 @@ CommandRegistration registerViewCommand(CLI::App& parent) {
       ->check(imageSizeValidator())
       ->capture_default_str();
 
+  sub->add_option("--loop", o.loops, "Play a video file or image folder N times in a row")
+      ->check(CLI::Range(1, 1000000));
+  sub->add_option("--report-every", o.reportEvery,
+                  "Headless soak report: resident memory and frame rate every N frames")
+      ->check(CLI::Range(1, 100000000));
+  sub->add_option("--soak-warmup", o.soakWarmup,
+                  "Frames before the soak's memory and rate baseline (with --report-every)")
+      ->check(CLI::Range(0, 100000000))
+      ->capture_default_str();
   sub->add_option("--calibrate", o.calibrateBoard,
                   "Live calibration with this board: chessboard:COLSxROWS:SQUARE_M (inner "
                   "corners) or charuco:DICT:SQXxSQY:SQUARE_M:MARKER_M")
@@ -125,6 +134,7 @@ CommandRegistration registerViewCommand(CLI::App& parent) {
               std::cout << "recorded " << s.recording.string() << " and " << s.trajectory.string()
                         << "\n";
             if (!s.screenshot.empty()) std::cout << "screenshot " << s.screenshot.string() << "\n";
+            if (s.soak) printSoakSummary(std::cout, *s.soak);
             if (!options.calibrateBoard.empty() && options.headless) {
               std::printf("calibration: %d views captured, %d rejected\n", s.calibrationCaptured,
                           s.calibrationRejected);

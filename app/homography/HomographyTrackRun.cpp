@@ -6,6 +6,7 @@
 #include <memory>
 #include <opencv2/imgcodecs.hpp>
 
+#include "app/cli/Interruption.hpp"
 #include "app/cli/ProgressBar.hpp"
 #include "app/homography/HomographyOverlay.hpp"
 #include "app/homography/HomographyTrackCsv.hpp"
@@ -59,14 +60,27 @@ HomographyTrackSummary runHomographyTrack(const HomographyTrackOptions& o) {
   ProgressBar progress("track homography", static_cast<std::size_t>(std::max(total, 0)));
   HomographyTrackSummary summary;
   std::vector<double> ms;
-  while (o.maxFrames < 0 || summary.frames < o.maxFrames) {
-    std::optional<Frame> frame = source->next();
+  // A frame that cannot be read or used mid-stream ends the run like the end of the input, so
+  // everything written up to it is kept; the error is reported after the outputs are finished.
+  std::string streamError;
+  const InterruptibleWork interruptible;  // Ctrl-C ends the loop; the outputs are then finished
+  while ((o.maxFrames < 0 || summary.frames < o.maxFrames) && !interruptRequested()) {
+    std::optional<Frame> frame;
+    try {
+      frame = source->next();
+    } catch (const Error& e) {
+      streamError = e.what();
+      break;
+    }
     if (!frame) break;
-    if (frame->image.size() != reference.size())
-      throw Error("input '" + o.input + "' frame " + std::to_string(frame->index) + " is " +
-                  std::to_string(frame->image.cols) + "x" + std::to_string(frame->image.rows) +
-                  " but the reference '" + o.reference.string() + "' is " +
-                  std::to_string(reference.cols) + "x" + std::to_string(reference.rows));
+    if (frame->image.size() != reference.size()) {
+      streamError = "input '" + o.input + "' frame " + std::to_string(frame->index) + " is " +
+                    std::to_string(frame->image.cols) + "x" + std::to_string(frame->image.rows) +
+                    " but the reference '" + o.reference.string() + "' is " +
+                    std::to_string(reference.cols) + "x" + std::to_string(reference.rows);
+      if (summary.frames == 0) throw Error(streamError);
+      break;
+    }
     const auto t0 = std::chrono::steady_clock::now();
     const TrackingResult result = tracker.process(frame->image, frame->index, frame->timestamp);
     const double elapsed =
@@ -93,9 +107,13 @@ HomographyTrackSummary runHomographyTrack(const HomographyTrackOptions& o) {
     progress.advance();
   }
   progress.finish();
-  if (summary.frames == 0) throw Error("input '" + o.input + "' gave no frames");
+  if (summary.frames == 0)
+    throw Error(streamError.empty() ? "input '" + o.input + "' gave no frames" : streamError);
   if (recorder) recorder->close();
   if (!o.csv.empty()) writeHomographyCsv(o.csv, records);
+  if (!streamError.empty())
+    throw Error(streamError + " (outputs written up to frame " +
+                std::to_string(records.back().index) + ")");
   std::nth_element(ms.begin(), ms.begin() + static_cast<long>(ms.size() / 2), ms.end());
   summary.medianMs = ms[ms.size() / 2];
   return summary;

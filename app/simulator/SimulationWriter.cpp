@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "app/cli/Interruption.hpp"
 #include "app/cli/ProgressBar.hpp"
 #include "engine/core/AtomicFile.hpp"
 #include "engine/core/Error.hpp"
@@ -71,7 +72,7 @@ void removeStaleFrames(const fs::path& framesDir, int frames) {
   }
 }
 
-void writeSceneDescription(const SceneSimulator& sim, const fs::path& file) {
+void writeSceneDescription(const SceneSimulator& sim, const fs::path& file, int frameCount) {
   const SimulationOptions& o = sim.options();
   writeFileAtomically(file, [&](const fs::path& tmp) {
     cv::FileStorage out(tmp.string(), cv::FileStorage::WRITE | cv::FileStorage::FORMAT_YAML);
@@ -86,7 +87,7 @@ void writeSceneDescription(const SceneSimulator& sim, const fs::path& file) {
     out << "preset" << o.preset;
     out << "seed" << std::to_string(o.seed);  // text: FileStorage integers are 32-bit
     out << "fps" << o.fps;
-    out << "frame_count" << o.frames;
+    out << "frame_count" << frameCount;
     out << "image_width" << o.size.width << "image_height" << o.size.height;
     out << "fov_deg" << o.fovDeg;
     out << "noise_sigma" << o.noiseSigma;
@@ -109,7 +110,7 @@ void writeSimulation(SceneSimulator& sim, const fs::path& outDir) {
   removeStaleFrames(framesDir, o.frames);
 
   sim.camera().save(outDir / "camera.yml");
-  writeSceneDescription(sim, outDir / "scene.yml");
+  writeSceneDescription(sim, outDir / "scene.yml", o.frames);
   TumTrajectory references;
   const std::vector<RigidPose>& referencePoses = sim.referencePoses();
   for (std::size_t i = 0; i < referencePoses.size(); ++i) {
@@ -125,7 +126,11 @@ void writeSimulation(SceneSimulator& sim, const fs::path& outDir) {
   TumTrajectory groundTruth;
   ProgressBar progress("simulate " + o.preset, static_cast<std::size_t>(o.frames));
   std::future<void> pending;
-  for (int k = 0; k < o.frames; ++k) {
+  // Ctrl-C stops after the frame in hand: the sequence is then complete up to it (scene.yml's
+  // frame count and groundtruth.txt say how far).
+  const InterruptibleWork interruptible;
+  int written = 0;
+  for (int k = 0; k < o.frames && !interruptRequested(); ++k, ++written) {
     groundTruth.poses.push_back({k / o.fps, sim.framePose(k)});
     cv::Mat frame = sim.renderFrame(k);
     if (pending.valid()) {
@@ -135,8 +140,11 @@ void writeSimulation(SceneSimulator& sim, const fs::path& outDir) {
     pending = std::async(std::launch::async, [file = framesDir / frameName(k),
                                               image = std::move(frame)] { writePng(file, image); });
   }
-  pending.get();
-  progress.advance();
+  if (pending.valid()) {
+    pending.get();
+    progress.advance();
+  }
+  if (written < o.frames) writeSceneDescription(sim, outDir / "scene.yml", written);
   groundTruth.save(outDir / "groundtruth.txt");
   progress.finish();
 }

@@ -5,6 +5,7 @@
 #include <iomanip>
 #include <sstream>
 
+#include "app/cli/Interruption.hpp"
 #include "app/cli/ProgressBar.hpp"
 #include "app/sources/FrameSourceFactory.hpp"
 #include "app/viewer/OverlayCompositor.hpp"
@@ -79,9 +80,29 @@ int runSixDofTrack(const SixDofTrackOptions& o) {
   int processed = 0, tracked = 0, switches = 0, relocAttempts = 0, relocSucceeded = 0;
   std::pair<int, int> lastPair{-1, -1};
   std::vector<double> ms, relocMs;
-  while (o.maxFrames < 0 || processed < o.maxFrames) {
-    std::optional<Frame> frame = source->next();
+  // A frame that cannot be read or used mid-stream ends the run like the end of the input, so
+  // everything written up to it is kept; the error is reported after the outputs are finished.
+  std::string streamError;
+  int lastIndex = -1;
+  const InterruptibleWork interruptible;  // Ctrl-C ends the loop; the outputs are then finished
+  while ((o.maxFrames < 0 || processed < o.maxFrames) && !interruptRequested()) {
+    std::optional<Frame> frame;
+    try {
+      frame = source->next();
+    } catch (const Error& e) {
+      streamError = e.what();
+      break;
+    }
     if (!frame) break;
+    if (frame->image.size() != map.camera.imageSize()) {
+      streamError = "input '" + o.input + "' frame " + std::to_string(frame->index) + " is " +
+                    std::to_string(frame->image.cols) + "x" + std::to_string(frame->image.rows) +
+                    " but the camera is calibrated for " +
+                    std::to_string(map.camera.imageSize().width) + "x" +
+                    std::to_string(map.camera.imageSize().height);
+      if (processed == 0) throw Error(streamError);
+      break;
+    }
     const TrackingResult result = tracker.process(frame->image, frame->index, frame->timestamp);
     const MultiReferenceResult& multi = tracker.last();
     const PoseTrackingResult& r = multi.tracking;
@@ -125,10 +146,12 @@ int runSixDofTrack(const SixDofTrackOptions& o) {
       recorder->write(composite, frame->timestamp, r.worldToCamera);
     }
     ++processed;
+    lastIndex = frame->index;
     progress.advance();
   }
   progress.finish();
-  if (processed == 0) throw Error("input '" + o.input + "' gave no frames");
+  if (processed == 0)
+    throw Error(streamError.empty() ? "input '" + o.input + "' gave no frames" : streamError);
   if (recorder) recorder->close();
   if (!o.trajectory.empty()) trajectory.save(o.trajectory);
   if (!o.csv.empty())
@@ -139,6 +162,8 @@ int runSixDofTrack(const SixDofTrackOptions& o) {
       const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
       if (std::fclose(f) != 0 || !ok) throw Error("cannot write " + o.csv.string());
     });
+  if (!streamError.empty())
+    throw Error(streamError + " (outputs written up to frame " + std::to_string(lastIndex) + ")");
   std::nth_element(ms.begin(), ms.begin() + static_cast<long>(ms.size() / 2), ms.end());
   std::printf("6dof: %d frames, %d tracked (%.1f%%), median %.2f ms per frame\n", processed,
               tracked, 100.0 * tracked / processed, ms[ms.size() / 2]);

@@ -26,6 +26,7 @@ VideoRecorder::VideoRecorder(const fs::path& mp4, double fps, cv::Size frameSize
   partialName.insert(partialName.begin(), '.');  // hidden; built so to dodge GCC 12 -Wrestrict
   partialName.append(".recording.mp4");
   partial_ = folder / partialName;
+  tracked_.emplace(partial_);
   writer_.open(partial_.string(), cv::CAP_FFMPEG, cv::VideoWriter::fourcc('m', 'p', '4', 'v'), fps,
                frameSize, true);
   if (!writer_.isOpened()) {
@@ -70,6 +71,7 @@ void VideoRecorder::close() {
     fs::remove(partial_, ec);
     throw Error("recording '" + mp4_.string() + "' cannot be moved into place");
   }
+  tracked_.reset();
 }
 
 }  // namespace reftrack::app

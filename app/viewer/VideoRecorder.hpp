@@ -9,6 +9,7 @@
 #include <opencv2/videoio.hpp>
 #include <optional>
 
+#include "engine/core/TemporaryOutputs.hpp"
 #include "engine/geometry/TumTrajectory.hpp"
 
 namespace reftrack::app {
@@ -36,6 +37,7 @@ class VideoRecorder {
 
  private:
   std::filesystem::path mp4_, trajectory_, partial_;
+  std::optional<TemporaryOutput> tracked_;  // partial_, removed if a signal ends the process
   cv::Size size_;
   cv::VideoWriter writer_;
   TumTrajectory poses_;

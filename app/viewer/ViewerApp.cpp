@@ -12,11 +12,14 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <iostream>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "app/cli/Interruption.hpp"
 #include "app/cli/ProgressBar.hpp"
 #include "app/sources/FrameGrabber.hpp"
+#include "app/sources/LoopingFrameSource.hpp"
 #include "app/sources/SimulatorSource.hpp"
 #include "app/viewer/CalibrationPanel.hpp"
 #include "app/viewer/LiveCalibration.hpp"
@@ -62,6 +65,10 @@ void ViewerOptions::check() const {
     throw Error("--calibration-out needs --calibrate BOARD");
   if (!calibrationOut.empty() && !headless)
     throw Error("--calibration-out applies to --headless runs (the window has a Save button)");
+  if (loops < 1) throw Error("--loop must be at least 1");
+  if (reportEvery < 0) throw Error("--report-every must not be negative");
+  if (reportEvery > 0 && !headless) throw Error("--report-every applies to --headless runs");
+  if (soakWarmup < 0) throw Error("--soak-warmup must not be negative");
 }
 
 bool windowSystemAvailable() {
@@ -123,6 +130,8 @@ Session openSession(const ViewerOptions& options, ViewerState& state) {
   if (!options.params.empty()) state.paramsPath = options.params.string();
 
   std::unique_ptr<FrameSource> source = openFrameSource(options.input, options.source);
+  if (options.loops > 1)
+    source = std::make_unique<LoopingFrameSource>(std::move(source), options.loops);
   const auto* sim = dynamic_cast<const SimulatorSource*>(source.get());
   std::string cameraName;
   // Calibrating without a camera file: K is guessed from the first frame's size below, and no
@@ -436,7 +445,13 @@ ViewerRunSummary runHeadless(const ViewerOptions& options, render::GlContext& co
       total ? std::make_unique<ProgressBar>("view", static_cast<std::size_t>(*total)) : nullptr;
 
   ViewerRunSummary summary;
+  std::optional<SoakMonitor> soak;
+  if (options.reportEvery > 0) soak.emplace(options.reportEvery, options.soakWarmup, &std::cout);
   cv::Mat lastCanvas;
+  // Ctrl-C, or a frame that cannot be read or used mid-stream while recording, ends the loop
+  // like the end of the input: the recording is finished up to the last frame drawn.
+  const InterruptibleWork interruptible;
+  std::string streamError;
   loop.process(std::move(session.first));
   for (;;) {
     loop.updateCalibration();
@@ -460,11 +475,22 @@ ViewerRunSummary runHeadless(const ViewerOptions& options, render::GlContext& co
     lastCanvas = canvas.readColourBgr();
     loop.record(lastCanvas);
     if (progress) progress->advance();
+    if (soak) soak->frameDone();
     if (options.maxFrames > 0 && loop.processed >= options.maxFrames) break;
-    if (!loop.advance()) break;
+    if (interruptRequested()) break;
+    try {
+      if (!loop.advance()) break;
+    } catch (const Error& e) {
+      if (!loop.recorder) throw;
+      streamError = e.what();
+      break;
+    }
   }
   if (progress) progress->finish();
   std::tie(summary.recording, summary.trajectory) = loop.stopRecording();
+  if (!streamError.empty())
+    throw Error(streamError + " (the recording '" + summary.recording.string() +
+                "' holds every frame before it)");
   if (!options.screenshot.empty()) {
     writeScreenshot(options.screenshot, lastCanvas);
     summary.screenshot = options.screenshot;
@@ -486,6 +512,7 @@ ViewerRunSummary runHeadless(const ViewerOptions& options, render::GlContext& co
   summary.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   summary.sourceFps = state.source.fps;
   summary.backend = context.backendName();
+  if (soak) summary.soak = soak->summary();
   return summary;
 }
 
@@ -508,9 +535,10 @@ ViewerRunSummary runWindow(const ViewerOptions& options, render::GlfwWindowConte
   bool newFrame = true;  // the current frame still has to be recorded
   Clock::time_point due = Clock::now();
   bool finishing = false;
+  const InterruptibleWork interruptible;  // Ctrl-C closes the window like its close button
   while (true) {
     window.pollEvents();
-    if (window.shouldClose()) finishing = true;
+    if (window.shouldClose() || interruptRequested()) finishing = true;
 
     // Carry out the panels' requests.
     loop.applyTrackerParams();

@@ -11,6 +11,7 @@
 
 #include "app/sources/FrameSourceFactory.hpp"
 #include "app/viewer/FrameTracker.hpp"
+#include "app/viewer/SoakMonitor.hpp"
 #include "engine/calibration/CameraCalibrator.hpp"
 #include "engine/geometry/PinholeCamera.hpp"
 #include "render/context/GlContext.hpp"
@@ -39,6 +40,11 @@ struct ViewerOptions {
   int calibrateEvery = 0;  // auto-capture every N frames; 0: off in the window, 1 headless
   std::filesystem::path calibrationOut;
   FrameSourceOptions source;
+  // Headless soak report (`--report-every N`): resident memory and frame rate every N frames,
+  // and the growth / rate ratio after the first soakWarmup frames. 0: off.
+  int reportEvery = 0;
+  int loops = 1;  // play a video file / image folder this many times (`--loop N`)
+  int soakWarmup = 1000;
   // Builds the live tracker (homography / 6-DOF) for the camera; used when --poses is not given.
   // Unset: sim: inputs replay their ground truth, other inputs show the video only.
   std::function<std::unique_ptr<FrameTracker>(const PinholeCamera&, const TrackerParams&)>
@@ -61,6 +67,7 @@ struct ViewerRunSummary {
   std::optional<CalibrationResult> calibration;
   std::string calibrationMessage;
   std::filesystem::path calibrationFile;  // the camera written (calibrationOut), else empty
+  std::optional<SoakSummary> soak;        // with reportEvery
 };
 
 // Runs the viewer. `context`: an existing current context to use (a GlfwWindowContext for the

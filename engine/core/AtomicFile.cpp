@@ -6,6 +6,7 @@
 #include <string>
 
 #include "engine/core/Error.hpp"
+#include "engine/core/TemporaryOutputs.hpp"
 
 namespace reftrack {
 
@@ -18,6 +19,7 @@ void writeFileAtomically(const std::filesystem::path& target,
   // Keep the extension: OpenCV picks formats (YAML, PNG, ...) from it.
   const fs::path tmp = dir / (".tmp-" + std::to_string(::getpid()) + "-" +
                               std::to_string(counter++) + "-" + target.filename().string());
+  const TemporaryOutput tracked(tmp);  // removed if a signal ends the process meanwhile
   try {
     writer(tmp);
     if (!fs::exists(tmp)) throw Error("nothing was written to '" + target.string() + "'");

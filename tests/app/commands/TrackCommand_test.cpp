@@ -2,6 +2,8 @@
 
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <opencv2/videoio.hpp>
 
 #include "CommandTestSupport.hpp"
 #include "TestPaths.hpp"
@@ -31,6 +33,36 @@ TEST(TrackCommand, HomographyModeWritesTheCsv) {
       dir);
   ASSERT_EQ(calibrated.exitCode, 0) << calibrated.err;
   EXPECT_NE(calibrated.out.find("5 frames, 5 tracked"), std::string::npos) << calibrated.out;
+}
+
+TEST(TrackCommand, AFrameOfAnotherSizeMidStreamKeepsEverythingWrittenBeforeIt) {
+  const auto dir = freshTempDir("TrackCommand_size_change");
+  const auto sim = runReftrack(
+      "simulate --preset static --frames 6 --size 320x240 --out " + (dir / "sim").string(), dir);
+  ASSERT_EQ(sim.exitCode, 0) << sim.err;
+  // Frame 4 of 6 comes from another camera: 640x480.
+  const auto frames = dir / "sim" / "frames";
+  cv::Mat big;
+  cv::resize(cv::imread((frames / "000004.png").string()), big, cv::Size(640, 480));
+  cv::imwrite((frames / "000004.png").string(), big);
+  const auto r =
+      runReftrack("track --reference " + (dir / "sim" / "reference_a.png").string() + " --input " +
+                      frames.string() + " --out-csv " + (dir / "out.csv").string() + " --record " +
+                      (dir / "out.mp4").string(),
+                  dir);
+  EXPECT_EQ(r.exitCode, 1) << r.out;
+  EXPECT_NE(r.err.find("is 640x480"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("outputs written up to frame 3"), std::string::npos) << r.err;
+  // The four frames before it are kept: CSV rows and recorded frames.
+  std::ifstream in(dir / "out.csv");
+  int lines = 0;
+  for (std::string l; std::getline(in, l);) ++lines;
+  EXPECT_EQ(lines, 1 + 4);
+  cv::VideoCapture video((dir / "out.mp4").string());
+  ASSERT_TRUE(video.isOpened());
+  int decoded = 0;
+  for (cv::Mat f; video.read(f);) ++decoded;
+  EXPECT_EQ(decoded, 4);
 }
 
 TEST(TrackCommand, UsageAndRuntimeErrors) {

@@ -58,6 +58,20 @@ TEST(ViewerApp, HeadlessRecordsOneFramePerProcessedFrame) {
   EXPECT_NEAR(t.poses[5].timestamp, 5 / 30.0, 1e-6);
 }
 
+TEST(ViewerApp, HeadlessSoakReportSamplesMemoryAndRate) {
+  ViewerOptions o = simOptions(12);
+  o.reportEvery = 4;
+  o.soakWarmup = 4;
+  const ViewerRunSummary s = runViewer(o);
+  ASSERT_TRUE(s.soak.has_value());
+  ASSERT_EQ(s.soak->samples.size(), 3u);  // after frames 4, 8 and 12
+  EXPECT_TRUE(s.soak->complete);
+  EXPECT_GT(s.soak->residentEndMiB, 10.0);  // OpenCV + Mesa are resident: a real reading
+  EXPECT_GT(s.soak->firstRate, 0.0);
+  o.headless = false;
+  EXPECT_THROW(o.check(), Error);  // a soak report is a headless feature
+}
+
 TEST(ViewerApp, ImageFolderWithPosesAndCamera) {
   const fs::path dir = test::freshTempDir("ViewerApp_Folder");
   {

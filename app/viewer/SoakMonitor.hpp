@@ -1,0 +1,58 @@
+#pragma once
+// SoakMonitor: resident memory and frame rate of a long viewer run, sampled every `interval`
+// frames (`reftrack view --report-every N`). After `warmup` frames it measures the memory growth
+// and compares the rate of the last interval with the first one after warm-up.
+#include <chrono>
+#include <cstddef>
+#include <optional>
+#include <ostream>
+#include <vector>
+
+namespace reftrack::app {
+
+// Resident set size of this process in MiB (Linux /proc/self/statm); nullopt where unavailable.
+std::optional<double> residentMemoryMiB();
+// CPU time used by this process so far (all threads), in seconds.
+double processCpuSeconds();
+
+struct SoakSample {
+  int frames = 0;              // frames processed when sampled
+  double residentMiB = 0;      // resident memory then
+  double framesPerSecond = 0;  // rate over the interval that ended here (wall clock)
+  double cpuMsPerFrame = 0;    // process CPU time per frame over that interval (all threads):
+                               // unlike the rate, unaffected by other processes' load
+};
+
+struct SoakSummary {
+  std::vector<SoakSample> samples;
+  int warmupFrames = 0;
+  // Resident memory at the first sample at or after warm-up, and at the last; growth = end - that.
+  double residentAfterWarmupMiB = 0, residentEndMiB = 0, growthMiB = 0, peakMiB = 0;
+  // Rate of the first interval after warm-up and of the last interval; ratio = last / first.
+  double firstRate = 0, lastRate = 0, rateRatio = 0;
+  double firstCpuMs = 0, lastCpuMs = 0, cpuRatio = 0;  // the same for CPU ms per frame
+  bool complete = false;  // at least two samples after warm-up (otherwise the figures are unset)
+};
+
+class SoakMonitor {
+ public:
+  // Prints one line per sample to `out` (nullptr: silent). Throws reftrack::Error for
+  // interval < 1 or warmup < 0.
+  SoakMonitor(int interval, int warmup, std::ostream* out);
+  void frameDone();  // call once per processed frame
+  SoakSummary summary() const;
+
+ private:
+  int interval_, warmup_;
+  std::ostream* out_;
+  int frames_ = 0;
+  std::chrono::steady_clock::time_point intervalStart_;
+  double intervalCpuStart_ = 0;
+  std::vector<SoakSample> samples_;
+};
+
+// "soak: memory after warm-up 212.4 MiB, end 212.9 MiB (growth +0.5 MiB, peak 213.0); rate
+// first 41.2 fr/s, last 40.7 fr/s (ratio 0.99)".
+void printSoakSummary(std::ostream& out, const SoakSummary& s);
+
+}  // namespace reftrack::app
