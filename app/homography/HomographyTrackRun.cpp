@@ -109,8 +109,15 @@ HomographyTrackSummary runHomographyTrack(const HomographyTrackOptions& o) {
   progress.finish();
   if (summary.frames == 0)
     throw Error(streamError.empty() ? "input '" + o.input + "' gave no frames" : streamError);
-  if (recorder) recorder->close();
+  // A recording that cannot be finished (full disk) must not cost the CSV.
+  std::string recordingError;
+  if (recorder) try {
+      recorder->close();
+    } catch (const Error& e) {
+      recordingError = e.what();
+    }
   if (!o.csv.empty()) writeHomographyCsv(o.csv, records);
+  if (!recordingError.empty()) throw Error(recordingError);
   if (!streamError.empty())
     throw Error(streamError + " (outputs written up to frame " +
                 std::to_string(records.back().index) + ")");

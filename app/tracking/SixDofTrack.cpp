@@ -152,7 +152,13 @@ int runSixDofTrack(const SixDofTrackOptions& o) {
   progress.finish();
   if (processed == 0)
     throw Error(streamError.empty() ? "input '" + o.input + "' gave no frames" : streamError);
-  if (recorder) recorder->close();
+  // A recording that cannot be finished (full disk) must not cost the other outputs.
+  std::string recordingError;
+  if (recorder) try {
+      recorder->close();
+    } catch (const Error& e) {
+      recordingError = e.what();
+    }
   if (!o.trajectory.empty()) trajectory.save(o.trajectory);
   if (!o.csv.empty())
     writeFileAtomically(o.csv, [&](const std::filesystem::path& tmp) {
@@ -162,6 +168,7 @@ int runSixDofTrack(const SixDofTrackOptions& o) {
       const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
       if (std::fclose(f) != 0 || !ok) throw Error("cannot write " + o.csv.string());
     });
+  if (!recordingError.empty()) throw Error(recordingError);
   if (!streamError.empty())
     throw Error(streamError + " (outputs written up to frame " + std::to_string(lastIndex) + ")");
   std::nth_element(ms.begin(), ms.begin() + static_cast<long>(ms.size() / 2), ms.end());

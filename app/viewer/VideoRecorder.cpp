@@ -64,6 +64,22 @@ void VideoRecorder::close() {
     fs::remove(partial_, ec);
     throw Error("recording '" + mp4_.string() + "' holds no frame; nothing written");
   }
+  // cv::VideoWriter reports no write error (a full disk, a file-size limit): the finished file
+  // must open and hold every frame before it takes the final name. Reading the container's
+  // frame count costs no decoding.
+  {
+    cv::VideoCapture check(partial_.string(), cv::CAP_FFMPEG);
+    const double stored = check.isOpened() ? check.get(cv::CAP_PROP_FRAME_COUNT) : -1.0;
+    if (stored != static_cast<double>(frames_)) {
+      std::error_code ec;
+      fs::remove(partial_, ec);
+      throw Error("recording '" + mp4_.string() + "' could not be finished (" +
+                  (stored < 0 ? std::string("the MP4 is unreadable")
+                              : std::to_string(static_cast<long long>(stored)) + " of " +
+                                    std::to_string(frames_) + " frames stored") +
+                  "): is the disk full or a file-size limit reached?");
+    }
+  }
   poses_.save(trajectory_);
   std::error_code ec;
   fs::rename(partial_, mp4_, ec);

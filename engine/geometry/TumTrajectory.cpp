@@ -58,6 +58,7 @@ void TumTrajectory::save(const std::filesystem::path& file) const {
           << std::setprecision(17) << ' ' << t.x() << ' ' << t.y() << ' ' << t.z() << ' ' << q.x()
           << ' ' << q.y() << ' ' << q.z() << ' ' << q.w() << '\n';
     }
+    out.close();  // flushes: a full disk shows here
     if (!out) throw Error("cannot write trajectory file '" + file.string() + "'");
   });
 }

@@ -65,6 +65,34 @@ TEST(TrackCommand, AFrameOfAnotherSizeMidStreamKeepsEverythingWrittenBeforeIt) {
   EXPECT_EQ(decoded, 4);
 }
 
+TEST(TrackCommand, AFileSizeLimitFailsTheRecordingClearlyAndKeepsTheCsv) {
+  const auto dir = freshTempDir("TrackCommand_full_disk");
+  const auto sim = runReftrack(
+      "simulate --preset static --frames 30 --size 320x240 --out " + (dir / "sim").string(), dir);
+  ASSERT_EQ(sim.exitCode, 0) << sim.err;
+  // 64 kB per file (ulimit -f counts 1024-byte blocks in bash): the ~5 kB CSV fits, 30 noisy
+  // 320x240 frames of MP4 (~215 kB) do not. SIGXFSZ ignored, so writes fail with EFBIG as on a full
+  // disk.
+  const std::string cmd =
+      "bash -c 'ulimit -f 64; trap \"\" XFSZ; exec " + reftrackBinary().string() +
+      " track --reference " + (dir / "sim" / "reference_a.png").string() + " --input " +
+      (dir / "sim" / "frames").string() + " --out-csv " + (dir / "out.csv").string() +
+      " --record " + (dir / "out.mp4").string() + "' >" + (dir / "stdout.txt").string() + " 2>" +
+      (dir / "stderr.txt").string();
+  const int status = std::system(cmd.c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 1);
+  std::ifstream errFile(dir / "stderr.txt");
+  const std::string err(std::istreambuf_iterator<char>(errFile), {});
+  EXPECT_NE(err.find("could not be finished"), std::string::npos) << err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.mp4"));  // absent, not truncated
+  EXPECT_FALSE(std::filesystem::exists(dir / ".out.recording.mp4"));
+  std::ifstream in(dir / "out.csv");
+  int lines = 0;
+  for (std::string l; std::getline(in, l);) ++lines;
+  EXPECT_EQ(lines, 1 + 30);  // the CSV is complete
+}
+
 TEST(TrackCommand, UsageAndRuntimeErrors) {
   const auto dir = freshTempDir("TrackCommand_errors");
   cv::imwrite((dir / "ref.png").string(), cv::Mat(240, 320, CV_8UC3, cv::Scalar(9, 9, 9)));
