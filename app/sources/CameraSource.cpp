@@ -36,6 +36,16 @@ std::optional<Frame> CameraSource::next() {
   return frame;
 }
 
+bool CameraSource::reconnect() {
+  capture_.release();
+  if (!std::filesystem::exists("/dev/video" + std::to_string(index_))) return false;
+  try {
+    return capture_.open(index_, cv::CAP_V4L2) && capture_.isOpened();
+  } catch (const cv::Exception&) {
+    return false;
+  }
+}
+
 std::string CameraSource::description() const {
   return "camera " + std::to_string(index_) + " (live)";
 }

@@ -1,7 +1,7 @@
 #pragma once
 // CameraSource: a live camera (V4L2 index N, as `camera:N`), timestamped by the steady clock
 // from the first frame. Never ends by itself; a camera that cannot be opened or stops delivering
-// frames throws reftrack::Error naming its index.
+// frames throws reftrack::Error naming its index; reconnect() then reopens it when it returns.
 #include <chrono>
 #include <opencv2/videoio.hpp>
 
@@ -17,6 +17,7 @@ class CameraSource final : public FrameSource {
   std::optional<int> frameCount() const override { return std::nullopt; }
   double fps() const override { return fps_; }
   bool isLive() const override { return true; }
+  bool reconnect() override;  // reopens /dev/videoN when it exists again
   std::string description() const override;
 
  private:

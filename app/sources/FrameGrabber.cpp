@@ -4,8 +4,9 @@
 
 namespace reftrack::app {
 
-FrameGrabber::FrameGrabber(std::unique_ptr<FrameSource> source, std::size_t capacity)
-    : source_(std::move(source)), capacity_(capacity) {
+FrameGrabber::FrameGrabber(std::unique_ptr<FrameSource> source, std::size_t capacity,
+                           std::chrono::milliseconds reconnectInterval)
+    : source_(std::move(source)), capacity_(capacity), reconnectInterval_(reconnectInterval) {
   if (!source_) throw Error("frame grabber: no source");
   if (capacity_ == 0) throw Error("frame grabber: queue capacity must be at least 1");
   threaded_ = !source_->needsGlThread();
@@ -21,6 +22,7 @@ void FrameGrabber::start() {
     queue_.clear();
     finished_ = stopping_ = false;
     error_ = nullptr;
+    disconnected_.reset();
   }
   thread_ = std::thread([this] { run(); });
 }
@@ -41,6 +43,16 @@ void FrameGrabber::run() {
     std::optional<Frame> frame;
     try {
       frame = source_->next();
+    } catch (const std::exception& e) {
+      if (live) {
+        if (!waitForReconnection(e.what())) return;  // stopping
+        continue;
+      }
+      std::lock_guard lock(mutex_);
+      error_ = std::current_exception();
+      finished_ = true;
+      changed_.notify_all();
+      return;
     } catch (...) {
       std::lock_guard lock(mutex_);
       error_ = std::current_exception();
@@ -69,10 +81,38 @@ void FrameGrabber::run() {
   }
 }
 
+bool FrameGrabber::waitForReconnection(const std::string& why) {
+  std::unique_lock lock(mutex_);
+  disconnected_ = why;
+  changed_.notify_all();
+  for (;;) {
+    if (changed_.wait_for(lock, reconnectInterval_, [this] { return stopping_; })) return false;
+    lock.unlock();
+    const bool back = source_->reconnect();
+    lock.lock();
+    if (back) {
+      disconnected_.reset();
+      changed_.notify_all();
+      return true;
+    }
+  }
+}
+
+bool FrameGrabber::frameReady() const {
+  if (!threaded_) return true;
+  std::lock_guard lock(mutex_);
+  return !queue_.empty() || finished_ || disconnected_.has_value();
+}
+
+std::optional<std::string> FrameGrabber::disconnected() const {
+  std::lock_guard lock(mutex_);
+  return disconnected_;
+}
+
 std::optional<Frame> FrameGrabber::next() {
   if (!threaded_) return source_->next();
   std::unique_lock lock(mutex_);
-  changed_.wait(lock, [this] { return !queue_.empty() || finished_; });
+  changed_.wait(lock, [this] { return !queue_.empty() || finished_ || disconnected_; });
   if (!queue_.empty()) {
     Frame frame = std::move(queue_.front());
     queue_.pop_front();

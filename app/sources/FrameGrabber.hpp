@@ -3,13 +3,18 @@
 // the oldest queued frame when the queue is full (the viewer always sees recent frames); a file
 // source blocks instead, so no frame is ever lost. An exception thrown on the thread is re-thrown
 // by next() once the frames before it are consumed. Sources that must be read on the GL thread
-// (the simulator) are read synchronously inside next(). The destructor stops the thread.
+// (the simulator) are read synchronously inside next(). A live source that fails (a camera
+// unplugged) is reported by disconnected() and reconnected every reconnectInterval until it
+// delivers again. The destructor stops the thread.
+#include <chrono>
 #include <condition_variable>
 #include <cstddef>
 #include <deque>
 #include <exception>
 #include <memory>
 #include <mutex>
+#include <optional>
+#include <string>
 #include <thread>
 
 #include "app/sources/FrameSource.hpp"
@@ -18,13 +23,20 @@ namespace reftrack::app {
 
 class FrameGrabber {
  public:
-  explicit FrameGrabber(std::unique_ptr<FrameSource> source, std::size_t capacity = 8);
+  explicit FrameGrabber(
+      std::unique_ptr<FrameSource> source, std::size_t capacity = 8,
+      std::chrono::milliseconds reconnectInterval = std::chrono::milliseconds(500));
   ~FrameGrabber();
   FrameGrabber(const FrameGrabber&) = delete;
   FrameGrabber& operator=(const FrameGrabber&) = delete;
 
-  // The next frame in order (blocking until one is read), nullopt at the end of the source.
+  // The next frame in order (blocking until one is read), nullopt at the end of the source — and
+  // for a live source that is disconnected with nothing queued.
   std::optional<Frame> next();
+  // True when next() would not block (a frame is queued, the source ended or is disconnected).
+  bool frameReady() const;
+  // Why a live source delivers nothing now (its error), while it is being reconnected.
+  std::optional<std::string> disconnected() const;
   // Empties the queue and continues from frame `index` (seekable sources only).
   void seek(int index);
   const FrameSource& source() const { return *source_; }
@@ -36,6 +48,8 @@ class FrameGrabber {
   void start();
   void stop();
   void run();
+  // Live source failed with `why`: reconnects every reconnectInterval_; false when stopping.
+  bool waitForReconnection(const std::string& why);
 
   std::unique_ptr<FrameSource> source_;
   std::size_t capacity_;
@@ -46,6 +60,8 @@ class FrameGrabber {
   bool finished_ = false, stopping_ = false;
   std::exception_ptr error_;
   std::size_t dropped_ = 0;
+  std::chrono::milliseconds reconnectInterval_;
+  std::optional<std::string> disconnected_;
   std::thread thread_;
 };
 

@@ -30,6 +30,9 @@ class FrameSource {
   virtual void seek(int index);
   // A live source produces frames in real time and may drop them (cameras).
   virtual bool isLive() const { return false; }
+  // Live sources: tries once to reconnect after next() threw (a camera unplugged and plugged in
+  // again); true when frames can be read again. Others cannot reconnect.
+  virtual bool reconnect() { return false; }
   // True when next() must run on the thread that owns the current GL context (the simulator),
   // so it cannot be read on a grabber thread.
   virtual bool needsGlThread() const { return false; }

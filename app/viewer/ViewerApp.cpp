@@ -211,8 +211,28 @@ struct FrameLoop {
   }
 
   std::string label() const {
+    if (state.source.disconnected)
+      return *state.source.disconnected + " - waiting for it to come back";
     return "frame " + std::to_string(current.index) + "  " + result.status + "  (" +
            state.trackerName + ")";
+  }
+
+  // A live camera that stopped delivering: shown on the video, and the recording is finished up
+  // to the last frame (a new one can be started when the camera is back).
+  void checkConnection() {
+    std::optional<std::string> why = session.grabber->disconnected();
+    if (why && !state.source.disconnected && recorder) {
+      const int frames = recorder->framesWritten();
+      const fs::path path = recorder->videoPath();
+      try {
+        stopRecording();
+        state.record.message =
+            *why + ": recording saved (" + std::to_string(frames) + " frames) to " + path.string();
+      } catch (const Error& e) {
+        state.record.message = e.what();
+      }
+    }
+    state.source.disconnected = std::move(why);
   }
 
   // Tracks `frame` and makes it the current one.
@@ -293,7 +313,8 @@ struct FrameLoop {
       frame = session.grabber->next();
     }
     if (!frame) {
-      state.source.ended = true;
+      // A disconnected camera has not ended: frames come again once it is back.
+      state.source.ended = !session.grabber->disconnected();
       return false;
     }
     state.source.ended = false;
@@ -487,6 +508,8 @@ ViewerRunSummary runHeadless(const ViewerOptions& options, render::GlContext& co
     }
   }
   if (progress) progress->finish();
+  if (const std::optional<std::string> why = session.grabber->disconnected())
+    std::cerr << "view: " << *why << "; outputs finished up to the last frame\n";
   std::tie(summary.recording, summary.trajectory) = loop.stopRecording();
   if (!streamError.empty())
     throw Error(streamError + " (the recording '" + summary.recording.string() +
@@ -570,8 +593,10 @@ ViewerRunSummary runWindow(const ViewerOptions& options, render::GlfwWindowConte
     // With --frames the window closes by itself (also when the source ends first).
     if ((limitReached || (options.maxFrames > 0 && state.source.ended)) && !newFrame)
       finishing = true;
+    loop.checkConnection();
     const bool wantFrame =
-        !limitReached && !state.source.ended && !newFrame &&
+        !limitReached && !state.source.ended && !newFrame && session.grabber->frameReady() &&
+        !state.source.disconnected &&
         ((state.source.playing && Clock::now() >= due) || state.source.stepRequested);
     if (wantFrame) {
       state.source.stepRequested = false;

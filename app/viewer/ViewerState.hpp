@@ -21,6 +21,7 @@ struct SourceState {
   double fps = 30.0;
   bool seekable = false, live = false, ended = false;
   std::size_t droppedFrames = 0;
+  std::optional<std::string> disconnected;  // a live camera that stopped: why (reconnecting)
   // Edited.
   bool playing = true;
   bool loop = false;

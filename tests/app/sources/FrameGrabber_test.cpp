@@ -114,3 +114,70 @@ TEST(FrameGrabber, DestructionStopsABlockedReader) {
   }
   EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(5));
 }
+
+namespace {
+
+// A live camera unplugged after frame 2: next() throws until reconnect() has been tried
+// `refusals` times; then frames continue from index 3.
+class UnpluggedCamera final : public FrameSource {
+ public:
+  explicit UnpluggedCamera(int refusals) : refusals_(refusals) {}
+  std::optional<Frame> next() override {
+    if (unplugged_) throw Error("camera 9 stopped delivering frames");
+    if (next_ == 3 && !wasUnplugged_) {
+      unplugged_ = wasUnplugged_ = true;
+      throw Error("camera 9 stopped delivering frames");
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));  // a camera's frame interval
+    const int k = next_++;
+    return Frame{cv::Mat(1, 1, CV_8UC3, cv::Scalar::all(k)), k, k / 30.0};
+  }
+  bool reconnect() override {
+    attempts.fetch_add(1);
+    if (attempts.load() <= refusals_) return false;
+    unplugged_ = false;
+    return true;
+  }
+  std::optional<int> frameCount() const override { return std::nullopt; }
+  double fps() const override { return 30.0; }
+  bool isLive() const override { return true; }
+  std::string description() const override { return "camera 9 (live)"; }
+  std::atomic<int> attempts{0};
+
+ private:
+  int refusals_, next_ = 0;
+  bool unplugged_ = false, wasUnplugged_ = false;
+};
+
+template <class Condition>
+bool eventually(Condition condition) {
+  for (int i = 0; i < 500; ++i) {
+    if (condition()) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  return false;
+}
+
+}  // namespace
+
+TEST(FrameGrabber, AnUnpluggedCameraIsReportedAndPickedUpAgainWhenItReturns) {
+  auto camera = std::make_unique<UnpluggedCamera>(2);
+  UnpluggedCamera& raw = *camera;
+  // Capacity 8 > 3 frames: nothing is dropped before the unplugging.
+  FrameGrabber grabber(std::move(camera), 8, std::chrono::milliseconds(20));
+  for (int k = 0; k < 3; ++k) {
+    const std::optional<Frame> f = grabber.next();
+    ASSERT_TRUE(f);
+    EXPECT_EQ(f->index, k);
+  }
+  // While away: the reason is reported, next() does not block and gives nothing.
+  ASSERT_TRUE(eventually([&] { return grabber.disconnected().has_value(); }));
+  EXPECT_NE(grabber.disconnected()->find("stopped delivering"), std::string::npos);
+  EXPECT_TRUE(grabber.frameReady());
+  // Back after two refused reconnections: frames continue, the state clears.
+  ASSERT_TRUE(eventually([&] { return !grabber.disconnected().has_value(); }));
+  EXPECT_EQ(raw.attempts.load(), 3);
+  std::optional<Frame> f;
+  ASSERT_TRUE(eventually([&] { return (f = grabber.next()).has_value(); }));
+  EXPECT_EQ(f->index, 3);
+}
