@@ -39,34 +39,78 @@ struct Args {
 
 FrameTracker trackerOn(const MultiReferenceMap& map, const TrackerParams& params) {
   auto tracker = std::make_shared<MultiReferenceTracker>(map, params);
-  return [tracker](const cv::Mat& frame) { return tracker->process(frame).tracking.worldToCamera; };
+  return [tracker](const cv::Mat& frame) {
+    const MultiReferenceResult r = tracker->process(frame);
+    FrameOutcome out(r.tracking.worldToCamera);
+    out.message = r.tracking.message;
+    if (r.relocalisation.attempted) {
+      out.message += " [relocaliser: " + r.relocalisation.message + "]";
+      out.relocaliseMs = r.relocalisation.locateMs;
+      out.relocaliseCpuMs = r.relocalisation.locateCpuMs;
+    }
+    return out;
+  };
+}
+
+// A CSV field: quoted, inner quotes doubled.
+std::string quoted(const std::string& text) {
+  std::string q = "\"";
+  for (char c : text) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
 }
 
 void writeCsv(const RelocalisationExperimentResult& r, const std::filesystem::path& file) {
   writeFileAtomically(file, [&](const std::filesystem::path& tmp) {
     std::ofstream out(tmp);
     out << "trial,index,reference,angle_deg,distance_ratio,roll_deg,posed,cube_error_px,ms,"
-           "recovered_on_frame,wrong_poses,baseline_posed,baseline_error_px,baseline_ms\n";
+           "recovered_on_frame,wrong_poses,baseline_posed,baseline_error_px,baseline_ms,cpu_ms,"
+           "relocalise_ms,relocalise_cpu_ms,baseline_cpu_ms,tracker_message\n";
     char line[512];
     for (std::size_t i = 0; i < r.coldStarts.size(); ++i) {
       const ColdStartTrial& t = r.coldStarts[i];
       std::snprintf(line, sizeof line,
-                    "cold_start,%zu,%d,%.3f,%.4f,%.2f,%d,%.4f,%.3f,,,%d,%.4f,%.3f\n", i,
-                    t.view.reference, t.view.angleDeg, t.view.distanceRatio, t.view.rollDeg,
+                    "cold_start,%zu,%d,%.3f,%.4f,%.2f,%d,%.4f,%.3f,,,%d,%.4f,%.3f,%.3f,%.3f,%.3f,"
+                    "%.3f,",
+                    i, t.view.reference, t.view.angleDeg, t.view.distanceRatio, t.view.rollDeg,
                     t.posed ? 1 : 0, t.posed ? t.cubeErrorPx : NAN, t.ms, t.baselinePosed ? 1 : 0,
-                    t.baselinePosed ? t.baselineErrorPx : NAN, t.baselineMs);
-      out << line;
+                    t.baselinePosed ? t.baselineErrorPx : NAN, t.baselineMs, t.cpuMs,
+                    t.relocaliseMs, t.relocaliseCpuMs, t.baselineCpuMs);
+      out << line << quoted(t.trackerMessage) << "\n";
     }
     for (std::size_t i = 0; i < r.kidnaps.size(); ++i) {
       const KidnapTrial& t = r.kidnaps[i];
-      std::snprintf(line, sizeof line, "kidnap,%zu,%d,%.3f,%.4f,%.2f,%d,%.4f,,%d,%d,,,\n", i,
+      std::snprintf(line, sizeof line, "kidnap,%zu,%d,%.3f,%.4f,%.2f,%d,%.4f,,%d,%d,,,,,,,,", i,
                     t.view.reference, t.view.angleDeg, t.view.distanceRatio, t.view.rollDeg,
                     t.recoveredOnFrame > 0 ? 1 : 0, t.recoveredOnFrame > 0 ? t.cubeErrorPx : NAN,
                     t.recoveredOnFrame, t.wrongPoses);
-      out << line;
+      out << line << quoted(t.trackerMessage) << "\n";
     }
     if (!out) throw Error("cannot write '" + file.string() + "'");
   });
+}
+
+// The relocalisation attempt's cost on the cold-start views: Relocaliser::locate alone (as the
+// tracker reported it), the whole first frame (attempt + verification by the pair tracker) and
+// the baseline on the same views in the same run; wall and thread CPU medians.
+void printAttemptTimes(const RelocalisationExperimentResult& r, bool baseline) {
+  int attempts = 0;
+  for (const ColdStartTrial& t : r.coldStarts) attempts += t.relocaliseMs >= 0.0 ? 1 : 0;
+  std::printf("\n%-34s %7s %12s %12s\n", "attempt time (cold-start views)", "n", "wall_med_ms",
+              "cpu_med_ms");
+  std::printf("%-34s %7d %12.2f %12.2f\n", "relocaliser (locate)", attempts, r.medianRelocaliseMs(),
+              r.medianRelocaliseCpuMs());
+  std::printf("%-34s %7zu %12.2f %12.2f\n", "first frame (locate + verification)",
+              r.coldStarts.size(), r.medianColdStartMs(), r.medianColdStartCpuMs());
+  if (!baseline || !(r.medianBaselineMs() > 0.0)) return;
+  std::printf("%-34s %7zu %12.2f %12.2f\n", "ORB + solvePnPRansac (baseline)", r.coldStarts.size(),
+              r.medianBaselineMs(), r.medianBaselineCpuMs());
+  std::printf(
+      "relocaliser / baseline median: wall %.2f, CPU %.2f; first frame / baseline: wall "
+      "%.2f, CPU %.2f\n",
+      r.medianRelocaliseMs() / r.medianBaselineMs(),
+      r.medianRelocaliseCpuMs() / r.medianBaselineCpuMs(),
+      r.medianColdStartMs() / r.medianBaselineMs(),
+      r.medianColdStartCpuMs() / r.medianBaselineCpuMs());
 }
 
 CommandRegistration registerExperimentRelocalisationCommand(CLI::App& parent) {
@@ -148,6 +192,7 @@ CommandRegistration registerExperimentRelocalisationCommand(CLI::App& parent) {
             if (a->experiment.baseline && r.medianBaselineMs() > 0)
               std::printf("cold start ms ratio tracker / baseline: %.2f\n",
                           r.medianColdStartMs() / r.medianBaselineMs());
+            printAttemptTimes(r, a->experiment.baseline);
 
             if (a->speedFrames > 0) {
               std::fprintf(stderr, "preparing the map of 2 references\n");

@@ -9,6 +9,7 @@
 #include "app/experiments/SixDofRuns.hpp"
 #include "app/simulator/SensorNoise.hpp"
 #include "engine/core/Error.hpp"
+#include "engine/core/ThreadCpuClock.hpp"
 #include "engine/evaluation/TrajectoryEvaluator.hpp"
 
 namespace reftrack::app {
@@ -101,13 +102,40 @@ double RelocalisationExperimentResult::medianBaselineMs() const {
   return median(ms);
 }
 
+double RelocalisationExperimentResult::medianBaselineCpuMs() const {
+  std::vector<double> ms;
+  for (const ColdStartTrial& t : coldStarts)
+    if (t.baselineMs > 0.0) ms.push_back(t.baselineCpuMs);
+  return median(ms);
+}
+
+double RelocalisationExperimentResult::medianColdStartCpuMs() const {
+  std::vector<double> ms;
+  for (const ColdStartTrial& t : coldStarts) ms.push_back(t.cpuMs);
+  return median(ms);
+}
+
+double RelocalisationExperimentResult::medianRelocaliseMs() const {
+  std::vector<double> ms;
+  for (const ColdStartTrial& t : coldStarts)
+    if (t.relocaliseMs >= 0.0) ms.push_back(t.relocaliseMs);
+  return median(ms);
+}
+
+double RelocalisationExperimentResult::medianRelocaliseCpuMs() const {
+  std::vector<double> ms;
+  for (const ColdStartTrial& t : coldStarts)
+    if (t.relocaliseCpuMs >= 0.0) ms.push_back(t.relocaliseCpuMs);
+  return median(ms);
+}
+
 TrackedFrameTiming compareTrackedFrameMs(const std::vector<cv::Mat>& frames,
                                          const FrameTracker& first, const FrameTracker& second) {
   TrackedFrameTiming timing;
   const auto timed = [](const FrameTracker& tracker, const cv::Mat& frame,
                         std::vector<double>& ms) {
     const Clock::time_point t0 = Clock::now();
-    const bool posed = tracker(frame).has_value();
+    const bool posed = tracker(frame).pose.has_value();
     const double elapsed = msSince(t0);
     if (posed) ms.push_back(elapsed);
   };
@@ -146,8 +174,14 @@ RelocalisationExperimentResult runRelocalisationExperiment(
         sim.renderView(t.view.worldToCamera, mixSeed(mixSeed(o.seed, kColdStartStream), i), noise));
     FrameTracker tracker = makeTracker();
     const Clock::time_point t0 = Clock::now();
-    const std::optional<RigidPose> pose = tracker(frame);
+    const double cpu0 = threadCpuMs();
+    const FrameOutcome outcome = tracker(frame);
+    t.cpuMs = threadCpuMs() - cpu0;
     t.ms = msSince(t0);
+    t.relocaliseMs = outcome.relocaliseMs;
+    t.relocaliseCpuMs = outcome.relocaliseCpuMs;
+    t.trackerMessage = outcome.message;
+    const std::optional<RigidPose>& pose = outcome.pose;
     t.message = "no pose";
     if (pose) {
       t.posed = true;
@@ -158,7 +192,9 @@ RelocalisationExperimentResult runRelocalisationExperiment(
     }
     if (baseline) {
       const Clock::time_point b0 = Clock::now();
+      const double cpu1 = threadCpuMs();
       const OrbPnpColdStartResult b = baseline->locate(frame);
+      t.baselineCpuMs = threadCpuMs() - cpu1;
       t.baselineMs = msSince(b0);
       if (b.worldToCamera) {
         t.baselinePosed = true;
@@ -185,13 +221,15 @@ RelocalisationExperimentResult runRelocalisationExperiment(
       KidnapTrial t;
       t.view = kidnapViews.next();
       for (int k = 0; k < o.blackFrames; ++k)
-        if (tracker(black)) ++t.posesOnBlack;
+        if (tracker(black).pose) ++t.posesOnBlack;
       t.wrongPoses += t.posesOnBlack;
       for (int clear = 1; clear <= 2; ++clear) {
         const cv::Mat frame = grey(
             sim.renderView(t.view.worldToCamera,
                            mixSeed(noiseSeed, static_cast<std::uint64_t>(2 * i + clear)), noise));
-        const std::optional<RigidPose> pose = tracker(frame);
+        const FrameOutcome outcome = tracker(frame);
+        t.trackerMessage += (clear > 1 ? "; " : "") + outcome.message;
+        const std::optional<RigidPose>& pose = outcome.pose;
         if (!pose) continue;
         const double e = poseCubeErrorPx(camera, t.view.worldToCamera, *pose, o.cubeSide);
         if (e > o.wrongPx) ++t.wrongPoses;

@@ -37,18 +37,24 @@ struct ColdStartTrial {
   SampledView view;
   bool posed = false;
   double cubeErrorPx = 0.0;  // when posed
-  double ms = 0.0;           // the whole first frame (tracker.process)
+  double ms = 0.0;           // the whole first frame (tracker.process), wall
+  double cpuMs = 0.0;        // ... the thread's CPU time
+  // The relocalisation attempt alone (Relocaliser::locate, no verification), as the tracker
+  // reported it; negative when it made none.
+  double relocaliseMs = -1.0, relocaliseCpuMs = -1.0;
   bool baselinePosed = false;
-  double baselineErrorPx = 0.0, baselineMs = 0.0;
-  std::string message;
+  double baselineErrorPx = 0.0, baselineMs = 0.0, baselineCpuMs = 0.0;
+  std::string message;         // good / coarse / wrong / no pose
+  std::string trackerMessage;  // what the tracker said about the frame (why no pose)
 };
 
 struct KidnapTrial {
   SampledView view;
-  int recoveredOnFrame = 0;  // 1 or 2: the clear frame that gave a good pose; 0: neither
-  double cubeErrorPx = 0.0;  // of the recovering pose
-  int wrongPoses = 0;        // poses beyond wrongPx during the trial (black or clear frames)
-  int posesOnBlack = 0;      // any pose on a black frame (there is nothing to see)
+  int recoveredOnFrame = 0;    // 1 or 2: the clear frame that gave a good pose; 0: neither
+  double cubeErrorPx = 0.0;    // of the recovering pose
+  int wrongPoses = 0;          // poses beyond wrongPx during the trial (black or clear frames)
+  int posesOnBlack = 0;        // any pose on a black frame (there is nothing to see)
+  std::string trackerMessage;  // the tracker's word on the clear frames ("; " between them)
 };
 
 struct RateSummary {
@@ -62,10 +68,24 @@ struct RelocalisationExperimentResult {
   std::vector<KidnapTrial> kidnaps;
   RateSummary coldStart() const, coldStartBaseline() const, kidnap() const;
   double medianColdStartMs() const, medianBaselineMs() const;
+  // Medians over the cold starts that made a relocalisation attempt, and the baseline's over
+  // the same views: wall and thread CPU milliseconds.
+  double medianRelocaliseMs() const, medianRelocaliseCpuMs() const;
+  double medianBaselineCpuMs() const, medianColdStartCpuMs() const;
+};
+
+// What a tracker reports for one frame: its pose (nullopt: none), what it said, and its
+// relocalisation attempt's times (negative: it made none). Converts from a bare pose.
+struct FrameOutcome {
+  FrameOutcome() = default;
+  FrameOutcome(std::optional<RigidPose> p) : pose(std::move(p)) {}  // implicit on purpose
+  std::optional<RigidPose> pose;
+  std::string message;
+  double relocaliseMs = -1.0, relocaliseCpuMs = -1.0;
 };
 
 // A fresh tracker on `map` (the caller's choice of class and settings).
-using FrameTracker = std::function<std::optional<RigidPose>(const cv::Mat& frame)>;
+using FrameTracker = std::function<FrameOutcome(const cv::Mat& frame)>;
 using TrackerFactory = std::function<FrameTracker()>;
 
 // Cube-vertex reprojection error (pixels, mean over the visible vertices) of `estimate`.

@@ -17,15 +17,17 @@ KeypointFeatures::KeypointFeatures(const std::string& kind) : kind_(kind) {
 int KeypointFeatures::normType() const { return kind_ == "sift" ? cv::NORM_L2 : cv::NORM_HAMMING; }
 
 void KeypointFeatures::detectAndDescribe(const cv::Mat& image, int maxKeypoints,
-                                         std::vector<cv::KeyPoint>& keypoints,
-                                         cv::Mat& descriptors) const {
+                                         std::vector<cv::KeyPoint>& keypoints, cv::Mat& descriptors,
+                                         int finerLevels, int coarserLevels) const {
   cv::Mat gray = image;
   if (image.channels() == 3) cv::cvtColor(image, gray, cv::COLOR_BGR2GRAY);
   keypoints.clear();
   descriptors.release();
   if (kind_ == "orb") {
-    // FAST threshold 20 (OpenCV's default); 8 levels of 1.2: keypoints from 1x to 3.6x scale.
-    cv::ORB::create(maxKeypoints)->detectAndCompute(gray, cv::noArray(), keypoints, descriptors);
+    // FAST threshold 20 (OpenCV's default); 8 levels of 1.2: keypoints from 1x to 3.6x scale,
+    // with the finer levels (firstLevel: the image upsampled) and coarser ones around them.
+    cv::ORB::create(maxKeypoints, 1.2f, 8 + finerLevels + coarserLevels, 31, finerLevels)
+        ->detectAndCompute(gray, cv::noArray(), keypoints, descriptors);
   } else if (kind_ == "sift") {
     cv::SIFT::create(maxKeypoints)->detectAndCompute(gray, cv::noArray(), keypoints, descriptors);
   } else {

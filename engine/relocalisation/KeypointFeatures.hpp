@@ -18,9 +18,12 @@ class KeypointFeatures {
   int normType() const;  // cv::NORM_HAMMING (orb, akaze) or cv::NORM_L2 (sift)
 
   // Detects and describes at most `maxKeypoints` keypoints (the strongest) of an 8-bit grey or
-  // BGR image. Descriptors: one row per keypoint.
+  // BGR image. Descriptors: one row per keypoint. ORB only: `finerLevels` pyramid levels above
+  // the image (magnified by 1.2 per level, for views closer than the image's) and
+  // `coarserLevels` beyond ORB's usual 8 (for farther views); keypoints in image pixels.
   void detectAndDescribe(const cv::Mat& image, int maxKeypoints,
-                         std::vector<cv::KeyPoint>& keypoints, cv::Mat& descriptors) const;
+                         std::vector<cv::KeyPoint>& keypoints, cv::Mat& descriptors,
+                         int finerLevels = 0, int coarserLevels = 0) const;
 
  private:
   std::string kind_;

@@ -10,6 +10,7 @@
 
 #include "engine/config/ResolutionScale.hpp"
 #include "engine/core/Error.hpp"
+#include "engine/core/ThreadCpuClock.hpp"
 #include "engine/relocalisation/KeypointFeatures.hpp"
 
 namespace reftrack {
@@ -170,7 +171,9 @@ const PinholeCamera& Relocaliser::camera() const { return impl_->camera; }
 
 RelocalisationAttempt Relocaliser::locate(const cv::Mat& frame) const {
   const auto start = std::chrono::steady_clock::now();
+  const double cpuStart = threadCpuMs();
   RelocalisationAttempt attempt = impl_->locate(frame);
+  attempt.cpuMs = threadCpuMs() - cpuStart;
   attempt.ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return attempt;
@@ -375,6 +378,33 @@ RelocalisationAttempt Relocaliser::Impl::locateWith(const cv::Mat& frame,
                   " inliers (" + std::to_string(ransacInliers.size()) + " of " +
                   std::to_string(matches) + " matches)";
     return out;
+  }
+  // solvePnPRansac re-estimates the pose from the best sample's inliers with EPnP (after AP3P
+  // samples), which can break down when they lie near a plane (a close view of the desk top):
+  // seen as poses that kept 2 of 50+ inliers. SQPnP (globally optimal, planar or not) on the
+  // same inliers replaces it when it reprojects more of them within the threshold.
+  {
+    std::vector<cv::Point3f> obj;
+    std::vector<cv::Point2f> img;
+    for (int i : ransacInliers) {
+      obj.push_back(object[static_cast<std::size_t>(i)]);
+      img.push_back(image[static_cast<std::size_t>(i)]);
+    }
+    const auto within = [&](const cv::Mat& r, const cv::Mat& t) {
+      std::vector<cv::Point2f> back;
+      cv::projectPoints(obj, r, t, K, distortion, back);
+      int n = 0;
+      for (std::size_t i = 0; i < img.size(); ++i) n += cv::norm(back[i] - img[i]) < threshold;
+      return n;
+    };
+    const int returned = within(rvec, tvec);
+    cv::Mat sr, st;
+    if (returned < static_cast<int>(obj.size()) &&
+        cv::solvePnP(obj, img, K, distortion, sr, st, false, cv::SOLVEPNP_SQPNP) &&
+        within(sr, st) > returned) {
+      rvec = sr;
+      tvec = st;
+    }
   }
   // Refine on the inliers, re-select the inliers under the refined pose, refine once more.
   std::vector<int> inliers = ransacInliers;

@@ -28,7 +28,8 @@ struct RelocalisationCandidate {
 struct RelocalisationAttempt {
   std::optional<RelocalisationCandidate> candidate;  // nullopt: no pose with enough support
   std::string message;                               // why not, or what was found
-  double ms = 0.0;
+  double ms = 0.0;                                   // wall time of locate()
+  double cpuMs = 0.0;                                // the calling thread's CPU time of locate()
 };
 
 class Relocaliser {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "engine/core/Error.hpp"
+#include "engine/core/ThreadCpuClock.hpp"
 #include "engine/relocalisation/Relocaliser.hpp"
 #include "engine/tracking/ReferenceSelector.hpp"
 
@@ -244,8 +245,11 @@ PoseTrackingResult MultiReferenceTracker::Impl::recover(const cv::Mat& frame,
     framesSinceRelocalisation = 0;
     ++relocalisationAttempts;
     const Clock::time_point start = Clock::now();
+    const double cpuStart = threadCpuMs();
     const RelocalisationAttempt attempt = relocaliser->locate(frame);
     relocalisation.attempted = true;
+    relocalisation.locateMs = attempt.ms;
+    relocalisation.locateCpuMs = attempt.cpuMs;
     relocalisation.message = attempt.message;
     if (attempt.candidate) {
       relocalisation.inliers = attempt.candidate->inliers;
@@ -255,6 +259,7 @@ PoseTrackingResult MultiReferenceTracker::Impl::recover(const cv::Mat& frame,
       PoseTrackingResult r = t.process(frame);
       used = pair;
       relocalisation.ms = msSince(start);
+      relocalisation.cpuMs = threadCpuMs() - cpuStart;
       if (r.state == TrackingState::Tracking) {
         relocalisation.succeeded = true;
         relocalisation.message +=
@@ -270,6 +275,7 @@ PoseTrackingResult MultiReferenceTracker::Impl::recover(const cv::Mat& frame,
       return r;
     }
     relocalisation.ms = msSince(start);
+    relocalisation.cpuMs = threadCpuMs() - cpuStart;
     PoseTrackingResult r;
     r.state = lastPose ? TrackingState::Lost : TrackingState::Initialising;
     r.message = "relocalisation: " + attempt.message;

@@ -25,7 +25,9 @@ struct RelocalisationReport {
   bool attempted = false;  // the relocaliser ran on this frame
   bool succeeded = false;  // ... and its candidate was verified by the pair tracker
   double ms = 0.0;         // time of the attempt (keypoints, matching, PnP, verification)
-  int inliers = 0;         // PnP inliers of the candidate
+  double cpuMs = 0.0;      // ... the thread's CPU time of it
+  double locateMs = 0.0, locateCpuMs = 0.0;  // Relocaliser::locate alone (no verification)
+  int inliers = 0;                           // PnP inliers of the candidate
   std::string message;
 };
 

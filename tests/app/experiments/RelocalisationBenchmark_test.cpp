@@ -30,12 +30,19 @@ TEST(RelocalisationBenchmark, TimesAndScoresBothSidesOnTheSameFrames) {
   for (const RelocalisationBenchmarkSide* s : {&r.relocaliser, &r.baseline}) {
     EXPECT_EQ(s->attempts, 7) << s->name;
     EXPECT_EQ(s->milliseconds.size(), 7u) << s->name;
+    ASSERT_EQ(s->cpuMilliseconds.size(), 7u) << s->name;
+    // The thread's CPU time of an attempt is never more than its wall time (+ clock rounding).
+    for (std::size_t i = 0; i < 7; ++i) {
+      EXPECT_GE(s->cpuMilliseconds[i], 0.0) << s->name;
+      EXPECT_LE(s->cpuMilliseconds[i], s->milliseconds[i] + 0.1) << s->name;
+    }
     EXPECT_EQ(s->centreErrorMm.size(), static_cast<std::size_t>(s->found)) << s->name;
     EXPECT_LE(s->found, 6) << s->name;
   }
   EXPECT_GE(r.relocaliser.found, 5);
   EXPECT_EQ(r.relocaliser.wrong, 0);
   EXPECT_GT(r.medianMsRatio, 0.0);
+  EXPECT_GT(r.medianCpuMsRatio, 0.0);
   std::printf("relocalisation benchmark (6 views of the synthetic corner + a black frame):\n");
   printRelocalisationBenchmark(r, stdout);
 

@@ -77,8 +77,8 @@ TEST(RelocalisationExperiment, OptionsCheckNamesTheBadField) {
 // poses: 20 cold starts and 10 kidnaps over the 6-reference walkaround map. A wrong pose (cube
 // error > 5 px) is never acceptable: none asserted. The bounds are the issue's rate target
 // (>= 95% good, i.e. >= 17 of 20 and >= 8 of 10 at a 1.6% / 8.6% chance of falling below with a
-// true 95%); this seed measures 17/20 cold starts and 9/10 kidnaps good (Relocaliser with guided
-// and magnified matching and the all-references fallback, 2026-12-01).
+// true 95%); this seed measures 19/20 cold starts and 9/10 kidnaps good (17/20 before the SQPnP
+// re-estimate and the references' finer ORB levels, 2026-12-01).
 TEST(RelocalisationExperiment, ColdStartAndKidnappedCameraOnSmallSamples) {
   const auto gl = render::createHeadlessContext();
   SimulationOptions o;
@@ -97,16 +97,74 @@ TEST(RelocalisationExperiment, ColdStartAndKidnappedCameraOnSmallSamples) {
       [&] {
         auto tracker = std::make_shared<MultiReferenceTracker>(map, params);
         return FrameTracker([tracker](const cv::Mat& frame) {
-          return tracker->process(frame).tracking.worldToCamera;
+          const MultiReferenceResult m = tracker->process(frame);
+          FrameOutcome out(m.tracking.worldToCamera);
+          out.message = m.tracking.message;
+          if (m.relocalisation.attempted) {
+            out.relocaliseMs = m.relocalisation.locateMs;
+            out.relocaliseCpuMs = m.relocalisation.locateCpuMs;
+          }
+          return out;
         });
       },
       e);
   const RateSummary cold = r.coldStart(), kidnap = r.kidnap();
   std::cout << "cold start " << cold.good << "/" << cold.trials << " good, " << cold.wrong
-            << " wrong, median " << r.medianColdStartMs() << " ms; kidnapped " << kidnap.good << "/"
-            << kidnap.trials << ", " << kidnap.wrong << " wrong\n";
+            << " wrong, median " << r.medianColdStartMs() << " ms (relocaliser "
+            << r.medianRelocaliseMs() << " ms wall, " << r.medianRelocaliseCpuMs()
+            << " ms CPU); kidnapped " << kidnap.good << "/" << kidnap.trials << ", " << kidnap.wrong
+            << " wrong\n";
+  // Every cold start is a fresh tracker: its first frame is a relocalisation attempt, timed, and
+  // a frame without a pose says why.
+  for (const ColdStartTrial& t : r.coldStarts) {
+    EXPECT_GE(t.relocaliseMs, 0.0);
+    EXPECT_GE(t.relocaliseCpuMs, 0.0);
+    EXPECT_LE(t.relocaliseCpuMs, t.relocaliseMs + 0.1);
+    if (!t.posed) {
+      EXPECT_FALSE(t.trackerMessage.empty());
+    }
+  }
   EXPECT_GE(cold.good, 17);
   EXPECT_EQ(cold.wrong, 0);
   EXPECT_GE(kidnap.good, 8);
   EXPECT_EQ(kidnap.wrong, 0);
+}
+
+// The cause of most close-view cold-start failures (issue 13, 200 views of 8 references: 5 of
+// the 15 failures at 0.5-0.6x the reference distance): such a view sees finer keypoints than the
+// reference's finest ORB level (now 3 upsampled levels finer) and, near a plane, solvePnPRansac's
+// EPnP re-estimate kept a few of its inliers (now SQPnP). 12 random views at 0.5-0.65x over the
+// 6-reference walkaround map: at least 11 of 12 good and none wrong (the issue's 95%: 11/12
+// holds 88% of the time at a true 95%).
+TEST(RelocalisationExperiment, CloseViewsColdStart) {
+  const auto gl = render::createHeadlessContext();
+  SimulationOptions o;
+  o.preset = "walkaround";
+  o.frames = 1;
+  o.references = 6;
+  SceneSimulator sim(o);
+  const TrackerParams params;
+  const MultiReferenceMap map = prepareSimulatedReferences(sim, 6, {}, params.relocalisation);
+  RelocalisationExperimentOptions e;
+  e.coldStarts = 12;
+  e.kidnaps = 0;
+  e.baseline = false;
+  e.seed = 5;
+  e.views.minDistanceRatio = 0.5;
+  e.views.maxDistanceRatio = 0.65;
+  const RateSummary cold = runRelocalisationExperiment(
+                               sim, map,
+                               [&] {
+                                 auto tracker =
+                                     std::make_shared<MultiReferenceTracker>(map, params);
+                                 return FrameTracker([tracker](const cv::Mat& frame) {
+                                   return tracker->process(frame).tracking.worldToCamera;
+                                 });
+                               },
+                               e)
+                               .coldStart();
+  std::cout << "close views (0.5-0.65x): " << cold.good << "/" << cold.trials << " good, "
+            << cold.wrong << " wrong\n";
+  EXPECT_GE(cold.good, 11);
+  EXPECT_EQ(cold.wrong, 0);
 }

@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "engine/core/Error.hpp"
 #include "engine/tracking/TrackingTestImages.hpp"
 
@@ -65,6 +68,31 @@ TEST(KeypointFeatures, EachKindFindsAtMostTheCapAndNothingOnABlackImage) {
     EXPECT_TRUE(d.empty()) << kind;
   }
   EXPECT_THROW(KeypointFeatures("surf"), Error);
+}
+
+// ORB's finer levels are the image magnified (1.2x per level): their keypoints are smaller than
+// the image's own finest (patch 31 px: 31 / 1.2^3 at the finest), still in image pixels, and a
+// good share of the cap goes to them (ORB gives each level 1.2x the next one's share).
+TEST(KeypointFeatures, OrbFinerLevelsGiveSmallerKeypointsInImagePixels) {
+  const cv::Mat textured = test::texturedImage({320, 240}, 7);
+  const KeypointFeatures orb("orb");
+  std::vector<cv::KeyPoint> plain, finer;
+  cv::Mat d;
+  orb.detectAndDescribe(textured, 2000, plain, d);
+  orb.detectAndDescribe(textured, 2000, finer, d, 3, 0);
+  ASSERT_FALSE(finer.empty());
+  EXPECT_EQ(d.rows, static_cast<int>(finer.size()));
+  float smallestPlain = 1e9f, smallestFiner = 1e9f;
+  for (const cv::KeyPoint& k : plain) smallestPlain = std::min(smallestPlain, k.size);
+  int belowImageScale = 0;
+  for (const cv::KeyPoint& k : finer) {
+    smallestFiner = std::min(smallestFiner, k.size);
+    belowImageScale += k.size < 30.0f;
+    EXPECT_TRUE(k.pt.inside(cv::Rect2f(0, 0, 320, 240))) << k.pt;
+  }
+  EXPECT_NEAR(smallestPlain, 31.0f, 1e-3f);
+  EXPECT_NEAR(smallestFiner, 31.0f / std::pow(1.2f, 3.0f), 0.05f);
+  EXPECT_GT(belowImageScale, static_cast<int>(finer.size()) / 4);
 }
 
 }  // namespace
