@@ -7,7 +7,8 @@
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 bash "$root/scripts/setup.sh"
-bash "$root/scripts/build.sh" Release
+# Only the `reftrack` CLI and its libraries: the test suite is built by scripts/test.sh.
+bash "$root/scripts/build.sh" Release reftrack
 out="${1:-$root/demo-out}"
 shift || true
 "${REFTRACK_BUILD_DIR:-$root/build}/app/reftrack" demo --out "$out" "$@"

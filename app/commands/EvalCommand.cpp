@@ -8,6 +8,7 @@
 #include "app/commands/Commands.hpp"
 #include "app/plot/PlotCanvas.hpp"
 #include "engine/core/Error.hpp"
+#include "engine/dataset/DatasetGroundTruth.hpp"
 #include "engine/evaluation/TrajectoryEvaluator.hpp"
 
 namespace reftrack::app {
@@ -15,10 +16,19 @@ namespace reftrack::app {
 namespace {
 
 struct EvalOptions {
-  std::string gt, est, camera, plotDir;
+  std::string gt, est, camera, plotDir, align = "none";
   bool json = false, noPlots = false;
+  double maxGap = 0.05;  // s; ground-truth samples farther apart are not interpolated
   EvaluationParams params;
 };
+
+std::string alignmentText(const TrajectoryEvaluation& ev, const EvalOptions& o) {
+  if (!ev.aligned) return "none (the default; --align se3|sim3 aligns the estimate first)";
+  char scale[64];
+  std::snprintf(scale, sizeof scale, ", scale %.6g", ev.alignmentScale);
+  return o.align + " (Umeyama least squares on the camera centres" +
+         (o.params.alignment == TrajectoryAlignment::Sim3 ? std::string(scale) : "") + ")";
+}
 
 std::string number(double v) {
   if (!std::isfinite(v)) return "null";
@@ -49,14 +59,18 @@ std::string statsJson(const ErrorStats& s) {
 }
 
 std::string toJson(const TrajectoryEvaluation& ev, const EvalOptions& o,
-                   const std::vector<std::string>& plots) {
+                   const std::string& gtDescription, const std::vector<std::string>& plots) {
   std::ostringstream j;
-  j << "{\"ground_truth\": " << jsonString(o.gt) << ", \"estimate\": " << jsonString(o.est)
+  j << "{\"ground_truth\": " << jsonString(o.gt)
+    << ", \"ground_truth_source\": " << jsonString(gtDescription)
+    << ", \"estimate\": " << jsonString(o.est)
     << ", \"ground_truth_frames\": " << ev.groundTruthFrames
     << ", \"estimate_frames\": " << ev.estimateFrames
     << ", \"associated_frames\": " << ev.associatedFrames
     << ", \"tracked_fraction\": " << number(ev.trackedFraction)
     << ", \"aligned\": " << (ev.aligned ? "true" : "false")
+    << ", \"alignment\": " << jsonString(o.align)
+    << ", \"alignment_scale\": " << number(ev.alignmentScale)
     << ", \"ate_translation_mm\": " << statsJson(ev.ateTranslationMm)
     << ", \"ate_rotation_deg\": " << statsJson(ev.ateRotationDeg)
     << ", \"rpe_translation_mm\": " << statsJson(ev.rpeTranslationMm)
@@ -70,14 +84,18 @@ std::string toJson(const TrajectoryEvaluation& ev, const EvalOptions& o,
   return j.str();
 }
 
-void printText(const TrajectoryEvaluation& ev, const EvalOptions& o) {
+void printText(const TrajectoryEvaluation& ev, const EvalOptions& o,
+               const std::string& gtDescription) {
   auto line = [](const char* name, const ErrorStats& s, const char* unit) {
     std::printf("%-22s rmse %9.3f  mean %9.3f  median %9.3f  p95 %9.3f  max %9.3f  %s\n", name,
                 s.rmse, s.mean, s.median, s.p95, s.max, unit);
   };
-  std::printf("frames: %zu ground truth, %zu estimated, %zu associated; tracked %.1f%%%s\n",
-              ev.groundTruthFrames, ev.estimateFrames, ev.associatedFrames,
-              100.0 * ev.trackedFraction, ev.aligned ? " (rigidly aligned)" : "");
+  std::printf("ground truth: %s\n", gtDescription.c_str());
+  std::printf("alignment: %s\n", alignmentText(ev, o).c_str());
+  std::printf(
+      "frames: %zu ground truth, %zu estimated, %zu associated (within %g s); tracked %.1f%%\n",
+      ev.groundTruthFrames, ev.estimateFrames, ev.associatedFrames, o.params.maxTimeDifference,
+      100.0 * ev.trackedFraction);
   line("ATE translation", ev.ateTranslationMm, "mm");
   line("ATE rotation", ev.ateRotationDeg, "deg");
   line("RPE translation/frame", ev.rpeTranslationMm, "mm");
@@ -132,19 +150,20 @@ std::vector<std::string> writePlots(const TrajectoryEvaluation& ev, const EvalOp
   return written;
 }
 
-void runEval(const EvalOptions& o) {
-  const TumTrajectory gt = TumTrajectory::load(o.gt);
+void runEval(EvalOptions o) {
+  o.params.alignment = parseTrajectoryAlignment(o.align);
+  const GroundTruth gt = loadGroundTruth(o.gt, o.maxGap);
   const TumTrajectory est = TumTrajectory::load(o.est);
   std::unique_ptr<PinholeCamera> camera;
   if (!o.camera.empty()) camera = std::make_unique<PinholeCamera>(PinholeCamera::load(o.camera));
-  const TrajectoryEvaluation ev = evaluateTrajectory(gt, est, o.params, camera.get());
+  const TrajectoryEvaluation ev = evaluateTrajectory(gt.trajectory, est, o.params, camera.get());
   std::vector<std::string> plots;
   if (!o.noPlots) plots = writePlots(ev, o);
   if (o.json) {
-    std::printf("%s\n", toJson(ev, o, plots).c_str());
+    std::printf("%s\n", toJson(ev, o, gt.description, plots).c_str());
     return;
   }
-  printText(ev, o);
+  printText(ev, o, gt.description);
   for (const std::string& p : plots) std::printf("wrote %s\n", p.c_str());
 }
 
@@ -152,9 +171,17 @@ CommandRegistration registerEvalCommand(CLI::App& parent) {
   auto options = std::make_shared<EvalOptions>();
   CLI::App* sub = parent.add_subcommand(
       "eval", "Compare an estimated trajectory with ground truth (ATE, RPE, cube error, jitter)");
-  sub->add_option("--gt", options->gt, "ground-truth trajectory (TUM)")
+  sub->add_option("--gt", options->gt,
+                  "ground truth: a TUM trajectory file, tum:DIR (TUM RGB-D groundtruth.txt at the "
+                  "rgb.txt frame times) or euroc:DIR (EuRoC state_groundtruth_estimate0 through "
+                  "cam0's T_BS, at the cam0 frame times)")
       ->required()
-      ->check(CLI::ExistingFile);
+      ->check(CLI::Validator(
+          [](std::string& v) -> std::string {
+            if (v.rfind("tum:", 0) == 0 || v.rfind("euroc:", 0) == 0) return "";
+            return CLI::ExistingFile(v);
+          },
+          "FILE|tum:DIR|euroc:DIR"));
   sub->add_option("--est", options->est, "estimated trajectory (TUM)")
       ->required()
       ->check(CLI::ExistingFile);
@@ -167,8 +194,16 @@ CommandRegistration registerEvalCommand(CLI::App& parent) {
                   "largest timestamp difference for association (s)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1e6));
-  sub->add_flag("--align", options->params.align,
-                "rigidly align the estimate to the ground truth first (Umeyama, no scale)");
+  sub->add_option("--max-gap", options->maxGap,
+                  "tum:/euroc: ground truth: largest gap between two samples to interpolate "
+                  "across (s)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1e6));
+  sub->add_option("--align", options->align,
+                  "align the estimate to the ground truth first (Umeyama on the camera centres): "
+                  "none, se3 (rigid) or sim3 (rigid + scale)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"none", "se3", "sim3"}));
   sub->add_flag("--json", options->json, "print one JSON object instead of text");
   sub->add_option("--plots", options->plotDir,
                   "folder for EST.error.png and EST.topview.png (default: beside --est)");

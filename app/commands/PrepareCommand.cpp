@@ -13,7 +13,12 @@
 
 #include "app/cli/ParsingValidator.hpp"
 #include "app/commands/Commands.hpp"
+#include "app/sources/FrameSourceFactory.hpp"
+#include "app/sources/InputCamera.hpp"
+#include "app/sources/StampedImageSource.hpp"
 #include "engine/core/Error.hpp"
+#include "engine/dataset/DatasetGroundTruth.hpp"
+#include "engine/evaluation/TrajectoryInterpolation.hpp"
 #include "engine/geometry/PinholeCamera.hpp"
 #include "engine/geometry/TumTrajectory.hpp"
 #include "engine/reference/MarkerSpec.hpp"
@@ -24,10 +29,50 @@ namespace reftrack::app {
 namespace {
 
 struct PrepareOptions {
-  std::string camera, refA, refB, refsFolder, marker, poses, params, out;
+  std::string camera, refA, refB, refsFolder, marker, poses, params, out, input;
   std::vector<std::string> refs;
+  std::vector<int> refFrames;       // with --input: the frames that become references
   std::vector<std::string> images;  // resolved at parse time: --ref..., --refs or --ref-a/--ref-b
 };
+
+bool isDatasetSpec(const std::string& s) {
+  return s.rfind("tum:", 0) == 0 || s.rfind("euroc:", 0) == 0;
+}
+
+// Ground-truth samples farther apart than this are not interpolated across (s).
+constexpr double kMaxGroundTruthGap = 0.05;
+
+// The reference frames of a sequence (--input, --ref-frames): images, names (the image file of a
+// dataset frame, else "INPUT#N") and timestamps.
+struct SequenceReferences {
+  std::vector<ReferenceImage> images;
+  std::vector<std::string> names;
+  std::vector<double> timestamps;
+};
+
+SequenceReferences readSequenceReferences(const PrepareOptions& o) {
+  const std::unique_ptr<FrameSource> source = openFrameSource(o.input);
+  const auto* stamped = dynamic_cast<const StampedImageSource*>(source.get());
+  SequenceReferences refs;
+  for (int index : o.refFrames) {
+    const std::optional<int> count = source->frameCount();
+    if (count && index >= *count)
+      throw Error("--ref-frames: frame " + std::to_string(index) + " is beyond the " +
+                  std::to_string(*count) + " frames of " + source->description());
+    source->seek(index);
+    const std::optional<Frame> frame = source->next();
+    if (!frame)
+      throw Error("--ref-frames: " + source->description() + " has no frame " +
+                  std::to_string(index));
+    const std::string name = stamped
+                                 ? stamped->frames()[static_cast<std::size_t>(index)].file.string()
+                                 : o.input + "#" + std::to_string(index);
+    refs.images.push_back({frame->image, name});
+    refs.names.push_back(name);
+    refs.timestamps.push_back(frame->timestamp);
+  }
+  return refs;
+}
 
 ReferenceImage readReferenceImage(const std::string& path) {
   cv::Mat image = cv::imread(path, cv::IMREAD_COLOR);
@@ -112,16 +157,28 @@ void printSummary(const MultiPreparation& p, const std::vector<std::string>& nam
               MultiReferenceMap::kFormatVersion, p.map.size());
 }
 
-void runPrepare(const PrepareOptions& o) {
-  const PinholeCamera camera = PinholeCamera::load(o.camera);
+void runPrepare(PrepareOptions o) {
+  const std::optional<PinholeCamera> inputCamera =
+      o.camera.empty() ? cameraFromInput(o.input) : std::nullopt;
+  const PinholeCamera camera = inputCamera ? *inputCamera : PinholeCamera::load(o.camera);
+  const std::string cameraName =
+      inputCamera ? "the sensor.yaml of '" + o.input + "'" : "camera file '" + o.camera + "'";
   const ReferencePreparerParams params =
       o.params.empty() ? ReferencePreparerParams{} : ReferencePreparerParams::load(o.params);
   std::vector<ReferenceImage> images;
-  for (const std::string& path : o.images) images.push_back(readReferenceImage(path));
+  std::vector<double> timestamps;
+  if (!o.input.empty()) {
+    SequenceReferences refs = readSequenceReferences(o);
+    images = std::move(refs.images);
+    o.images = std::move(refs.names);
+    timestamps = std::move(refs.timestamps);
+  } else {
+    for (const std::string& path : o.images) images.push_back(readReferenceImage(path));
+  }
   for (const ReferenceImage& r : images) {
     if (r.image.size() != camera.imageSize())
       throw Error("reference image '" + r.name + "' is " + std::to_string(r.image.cols) + "x" +
-                  std::to_string(r.image.rows) + " but camera file '" + o.camera + "' is for " +
+                  std::to_string(r.image.rows) + " but " + cameraName + " is for " +
                   std::to_string(camera.imageSize().width) + "x" +
                   std::to_string(camera.imageSize().height) + " images");
   }
@@ -130,6 +187,22 @@ void runPrepare(const PrepareOptions& o) {
   std::optional<MultiPreparation> prepared;
   if (!o.marker.empty()) {
     prepared = preparer.prepare(images, MarkerSpec::parse(o.marker), progress);
+  } else if (!o.input.empty()) {
+    // The ground-truth pose at each reference frame's timestamp (interpolated).
+    const GroundTruth gt = loadGroundTruth(o.poses, kMaxGroundTruthGap);
+    std::printf("reference poses: %s\n", gt.description.c_str());
+    std::vector<RigidPose> T;
+    for (std::size_t i = 0; i < images.size(); ++i) {
+      const TumTrajectory at =
+          interpolateTrajectory(gt.trajectory, {timestamps[i]}, kMaxGroundTruthGap);
+      if (at.poses.empty())
+        throw Error("reference frame " + std::to_string(o.refFrames[i]) +
+                    " (t = " + std::to_string(timestamps[i]) + " s) has no ground-truth pose in '" +
+                    o.poses + "' (outside it, or in a gap longer than " +
+                    std::to_string(kMaxGroundTruthGap) + " s)");
+      T.push_back(at.poses.front().worldToCamera);
+    }
+    prepared = preparer.prepare(images, T, "poses " + o.poses, progress);
   } else {
     const TumTrajectory poses = TumTrajectory::load(o.poses);
     if (poses.poses.size() < images.size())
@@ -154,10 +227,24 @@ CommandRegistration registerPrepareCommand(CLI::App& parent) {
       "(--poses; with --ref-a/--ref-b its first two entries). Every pair of references with\n"
       "overlap and parallax is matched and triangulated (one progress line per pair); the\n"
       "matches merge into points seen by 2..N references. Writes OUT/map.yml (format version 2)\n"
-      "and OUT/reference_00.png, reference_01.png, ...");
-  sub->add_option("--camera", options->camera, "camera file (camera.yml)")
-      ->required()
-      ->check(CLI::ExistingFile);
+      "and OUT/reference_00.png, reference_01.png, ...\n"
+      "From a recorded sequence: --input SRC --ref-frames I,J,... takes the references from\n"
+      "SRC (e.g. tum:DIR or euroc:DIR) and --poses the ground truth at their timestamps\n"
+      "(a TUM file, tum:DIR or euroc:DIR, interpolated); euroc: inputs bring their camera.");
+  CLI::Option* cameraOption =
+      sub->add_option("--camera", options->camera,
+                      "camera file (camera.yml; default for euroc: inputs: their sensor.yaml)")
+          ->check(CLI::ExistingFile);
+  CLI::Option* input = sub->add_option(
+      "--input", options->input,
+      "a sequence (video, image folder, tum:DIR, euroc:DIR) holding the references");
+  CLI::Option* refFrames =
+      sub->add_option("--ref-frames", options->refFrames,
+                      "with --input: the frame indices that become references (N >= 2)")
+          ->delimiter(',')
+          ->check(CLI::NonNegativeNumber);
+  input->needs(refFrames);
+  refFrames->needs(input);
   CLI::Option* ref = sub->add_option("--ref", options->refs, "reference image (repeat: N >= 2)")
                          ->check(CLI::ExistingFile);
   CLI::Option* refs =
@@ -167,7 +254,9 @@ CommandRegistration registerPrepareCommand(CLI::App& parent) {
       sub->add_option("--ref-a", options->refA, "reference image A")->check(CLI::ExistingFile);
   CLI::Option* refB =
       sub->add_option("--ref-b", options->refB, "reference image B")->check(CLI::ExistingFile);
-  ref->excludes(refs)->excludes(refA)->excludes(refB);
+  ref->excludes(refs)->excludes(refA)->excludes(refB)->excludes(input);
+  refs->excludes(input);
+  refA->excludes(input);
   refs->excludes(ref)->excludes(refA)->excludes(refB);
   refA->needs(refB);
   refB->needs(refA);
@@ -175,21 +264,40 @@ CommandRegistration registerPrepareCommand(CLI::App& parent) {
                                         "marker DICT:ID:SIDE_M, e.g. DICT_6X6_250:23:0.2")
                             ->check(parsingValidator<MarkerSpec>("MARKER"));
   CLI::Option* poses =
-      sub->add_option("--poses", options->poses,
-                      "TUM file with one pose per reference, in order (--ref-a/--ref-b: first two)")
-          ->check(CLI::ExistingFile);
+      sub->add_option(
+             "--poses", options->poses,
+             "TUM file with one pose per reference, in order (--ref-a/--ref-b: first two); "
+             "with --input: a TUM file, tum:DIR or euroc:DIR ground truth")
+          ->check(CLI::Validator(
+              [](std::string& v) -> std::string {
+                return isDatasetSpec(v) ? std::string() : CLI::ExistingFile(v);
+              },
+              "FILE|tum:DIR|euroc:DIR"));
   marker->excludes(poses);
   poses->excludes(marker);
   sub->add_option("--params", options->params,
                   "preparation parameters (YAML: corners, matching, marker, preparation)")
       ->check(CLI::ExistingFile);
   sub->add_option("--out", options->out, "output folder of the reference map")->required();
-  sub->callback([options, marker, poses, ref, refs, refA] {
+  sub->callback([options, marker, poses, ref, refs, refA, input, cameraOption] {
     PrepareOptions& o = *options;
-    if (ref->count() == 0 && refs->count() == 0 && refA->count() == 0)
-      throw CLI::RequiredError("--ref (repeated), --refs or --ref-a/--ref-b");
+    if (ref->count() == 0 && refs->count() == 0 && refA->count() == 0 && input->count() == 0)
+      throw CLI::RequiredError("--ref (repeated), --refs, --ref-a/--ref-b or --input");
     if (marker->count() == 0 && poses->count() == 0)
       throw CLI::RequiredError("one of --marker or --poses");
+    if (cameraOption->count() == 0 && o.input.rfind("euroc:", 0) != 0)
+      throw CLI::RequiredError("--camera (only euroc: inputs bring their camera)");
+    if (input->count() > 0) {
+      if (o.refFrames.size() < 2)
+        throw CLI::ValidationError(
+            "--ref-frames",
+            std::to_string(o.refFrames.size()) + " reference frame(s); at least 2 are needed");
+      return;  // frames and poses are checked when read
+    }
+    if (poses->count() > 0 && isDatasetSpec(o.poses))
+      throw CLI::ValidationError("--poses", "'" + o.poses +
+                                                "' (a dataset's ground truth) needs --input and "
+                                                "--ref-frames to pick the reference frames");
     if (refA->count() > 0) {
       o.images = {o.refA, o.refB};
       return;  // the pose file's first two entries (checked when read)

@@ -58,7 +58,8 @@ CommandRegistration registerTrackCommand(CLI::App& parent) {
   sub->add_option("--mode", args->mode, "homography | 6dof (default: from the other options)")
       ->check(CLI::IsMember({"homography", "6dof"}));
   sub->add_option("--input", args->input,
-                  "Video file, image folder or glob, camera:N or sim:PRESET")
+                  "Video file, image folder or glob, camera:N, sim:PRESET, tum:DIR (TUM RGB-D "
+                  "rgb.txt) or euroc:DIR (EuRoC cam0); dataset frames keep their timestamps")
       ->required();
   sub->add_option("--reference", args->reference, "Homography: the stored reference frame")
       ->check(CLI::ExistingFile);
@@ -66,7 +67,8 @@ CommandRegistration registerTrackCommand(CLI::App& parent) {
       ->check(CLI::ExistingFile);
   sub->add_option("--camera", args->camera,
                   "Homography: camera.yml of the reference's camera (enables the rotation-only "
-                  "model for frames that barely overlap the reference)")
+                  "model for frames that barely overlap the reference; default for euroc: inputs: "
+                  "their sensor.yaml)")
       ->check(CLI::ExistingFile);
   sub->add_option("--map", args->map, "6dof: folder written by `reftrack prepare`")
       ->check(CLI::ExistingDirectory);
@@ -82,7 +84,8 @@ CommandRegistration registerTrackCommand(CLI::App& parent) {
       ->check(CLI::Range(1e-4, 100.0))
       ->capture_default_str();
   sub->footer(
-      "Homography CSV columns: index,status,inlier_ratio,h11..h33,ms — status tracked|lost, H\n"
+      "Homography CSV columns: index,timestamp,status,inlier_ratio,h11..h33,ms — status\n"
+      "tracked|lost, H\n"
       "maps reference pixels to frame pixels (identity when lost), ms the tracker's time.\n"
       "Labels YAML: labels: [ { text: \"Tower\", x: 120.5, y: 80.0 }, ... ] in reference pixels.");
   sub->parse_complete_callback([args] {

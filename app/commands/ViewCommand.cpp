@@ -36,7 +36,9 @@ CommandRegistration registerViewCommand(CLI::App& parent) {
       "view", "Show (or record) the virtual object over video at the tracked pose");
   sub->footer(
       "SRC: a video file, a folder of images, a glob (\"frames/*.png\"), camera:N (live camera)\n"
-      "or sim:PRESET (the simulator on the fly: handheld, orbit, rotate, static, forward).\n"
+      "or sim:PRESET (the simulator on the fly: handheld, orbit, rotate, static, forward),\n"
+      "tum:DIR (TUM RGB-D rgb.txt) or euroc:DIR (EuRoC cam0; its sensor.yaml is the camera\n"
+      "when --camera is not given); dataset frames keep their timestamps.\n"
       "Poses come from the 6-DOF tracker (--map), the homography tracker (--reference), or a\n"
       "replayed trajectory (--poses, TUM camera in world); sim: inputs without them replay\n"
       "their ground truth. Recording writes OUT.mp4 (one frame per processed frame, at\n"
@@ -45,7 +47,7 @@ CommandRegistration registerViewCommand(CLI::App& parent) {
       "camera.yml, use it for tracking); --camera is then optional. Headless, every frame is\n"
       "examined, views are captured automatically and the camera is calibrated at the end.");
   sub->add_option("--input", o.input, "Frame source SRC")->required();
-  sub->add_option("--camera", o.camera, "camera.yml (required unless SRC is sim:)")
+  sub->add_option("--camera", o.camera, "camera.yml (required unless SRC is sim: or euroc:)")
       ->check(CLI::ExistingFile);
   sub->add_option("--poses", o.poses, "TUM trajectory to replay as the poses")
       ->check(CLI::ExistingFile);

@@ -9,12 +9,13 @@
 namespace reftrack::app {
 
 std::string homographyCsvHeader() {
-  return "index,status,inlier_ratio,h11,h12,h13,h21,h22,h23,h31,h32,h33,ms";
+  return "index,timestamp,status,inlier_ratio,h11,h12,h13,h21,h22,h23,h31,h32,h33,ms";
 }
 
 std::string homographyCsvRow(const HomographyFrameRecord& r) {
-  std::string row = std::to_string(r.index) + (r.tracked ? ",tracked" : ",lost");
   char buffer[64];
+  std::snprintf(buffer, sizeof buffer, ",%.6f", r.timestamp);
+  std::string row = std::to_string(r.index) + buffer + (r.tracked ? ",tracked" : ",lost");
   std::snprintf(buffer, sizeof buffer, ",%.4f", r.inlierRatio);
   row += buffer;
   for (int k = 0; k < 9; ++k) {

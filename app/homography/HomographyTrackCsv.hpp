@@ -1,8 +1,9 @@
 #pragma once
 // HomographyTrackCsv: the per-frame record of a homography-mode run (`reftrack track --mode
 // homography --out-csv`) and its CSV form, one row per frame:
-//   index,status,inlier_ratio,h11,h12,h13,h21,h22,h23,h31,h32,h33,ms
-// status is "tracked" or "lost"; H maps the reference to the frame (identity when lost).
+//   index,timestamp,status,inlier_ratio,h11,h12,h13,h21,h22,h23,h31,h32,h33,ms
+// timestamp is the frame's (seconds, the dataset's clock for tum:/euroc: inputs); status is
+// "tracked" or "lost"; H maps the reference to the frame (identity when lost).
 #include <filesystem>
 #include <opencv2/core.hpp>
 #include <string>
@@ -12,6 +13,7 @@ namespace reftrack::app {
 
 struct HomographyFrameRecord {
   int index = 0;
+  double timestamp = 0.0;
   bool tracked = false;
   double inlierRatio = 0.0;
   cv::Matx33d H = cv::Matx33d::eye();

@@ -11,6 +11,7 @@
 #include "app/homography/HomographyOverlay.hpp"
 #include "app/homography/HomographyTrackCsv.hpp"
 #include "app/sources/FrameSourceFactory.hpp"
+#include "app/sources/InputCamera.hpp"
 #include "app/viewer/HomographyFrameTracker.hpp"
 #include "app/viewer/VideoRecorder.hpp"
 #include "engine/core/Error.hpp"
@@ -40,8 +41,10 @@ HomographyTrackSummary runHomographyTrack(const HomographyTrackOptions& o) {
 
   // A calibrated camera enables the rotation-only model; without one, the overlay still needs a
   // camera of the frame size (homography mode draws no 3-D content, so any pinhole serves).
+  // Without --camera, a euroc: input brings its sensor.yaml camera (cameraFromInput says so).
   const std::optional<PinholeCamera> calibrated =
-      o.camera.empty() ? std::nullopt : std::optional<PinholeCamera>(PinholeCamera::load(o.camera));
+      o.camera.empty() ? cameraFromInput(o.input)
+                       : std::optional<PinholeCamera>(PinholeCamera::load(o.camera));
   HomographyFrameTracker tracker(reference, params, calibrated, labels);
   const PinholeCamera camera =
       calibrated ? *calibrated : PinholeCamera::fromFieldOfView(reference.size(), 60.0);
@@ -88,6 +91,7 @@ HomographyTrackSummary runHomographyTrack(const HomographyTrackOptions& o) {
     const HomographyTrackResult& r = tracker.last();
     HomographyFrameRecord record;
     record.index = frame->index;
+    record.timestamp = frame->timestamp;
     record.tracked = r.tracked;
     record.inlierRatio = r.inlierRatio;
     if (r.tracked) record.H = r.H;

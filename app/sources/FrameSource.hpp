@@ -12,7 +12,7 @@ namespace reftrack::app {
 struct Frame {
   cv::Mat image;           // CV_8UC3 BGR
   int index = 0;           // position in the source (0-based)
-  double timestamp = 0.0;  // seconds since the first frame
+  double timestamp = 0.0;  // seconds since the first frame; the dataset's clock for tum:/euroc:
 };
 
 class FrameSource {

@@ -5,10 +5,13 @@
 #include <filesystem>
 
 #include "app/sources/CameraSource.hpp"
+#include "app/sources/EurocSequenceSource.hpp"
 #include "app/sources/ImageFolderSource.hpp"
 #include "app/sources/SimulatorSource.hpp"
+#include "app/sources/TumSequenceSource.hpp"
 #include "app/sources/VideoFileSource.hpp"
 #include "engine/core/Error.hpp"
+#include "engine/dataset/DatasetSpec.hpp"
 
 namespace reftrack::app {
 
@@ -46,6 +49,11 @@ std::unique_ptr<FrameSource> openFrameSource(const std::string& input,
     sim.seed = options.simSeed;
     sim.fps = options.imageFps;
     return std::make_unique<SimulatorSource>(sim);
+  }
+  if (const std::optional<DatasetSpec> dataset = parseDatasetSpec(input)) {
+    if (dataset->layout == DatasetLayout::Tum)
+      return std::make_unique<TumSequenceSource>(dataset->dir);
+    return std::make_unique<EurocSequenceSource>(dataset->dir);
   }
   if (input.find_first_of("*?[") != std::string::npos)
     return std::make_unique<ImageFolderSource>(input, options.imageFps);

@@ -2,6 +2,9 @@
 // openFrameSource: the source named by a `--input` string:
 //   camera:N          live camera N
 //   sim:PRESET        the simulator on the fly (needs a current GL context on this thread)
+//   tum:DIR           a TUM RGB-D sequence (DIR/rgb.txt), frames with its timestamps
+//   euroc:DIR         a EuRoC / ASL sequence's cam0 (DIR, DIR/mav0 or the camera folder),
+//                     frames with its timestamps
 //   a folder          its images, natural order
 //   a glob pattern    e.g. "frames/*.png"
 //   any other path    a video file

@@ -117,7 +117,7 @@ int runSixDofTrack(const SixDofTrackOptions& o) {
       relocSucceeded += multi.relocalisation.succeeded ? 1 : 0;
       relocMs.push_back(multi.relocalisation.ms);
     }
-    csv << frame->index << ',' << frame->timestamp << ',' << toString(r.state);
+    csv << frame->index << ',' << std::to_string(frame->timestamp) << ',' << toString(r.state);
     if (r.worldToCamera) {
       ++tracked;
       trajectory.poses.push_back({frame->timestamp, *r.worldToCamera});

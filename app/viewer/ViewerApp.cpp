@@ -20,6 +20,7 @@
 #include "app/cli/ProgressBar.hpp"
 #include "app/sources/FrameGrabber.hpp"
 #include "app/sources/LoopingFrameSource.hpp"
+#include "app/sources/InputCamera.hpp"
 #include "app/sources/SimulatorSource.hpp"
 #include "app/viewer/CalibrationPanel.hpp"
 #include "app/viewer/LiveCalibration.hpp"
@@ -146,10 +147,13 @@ Session openSession(const ViewerOptions& options, ViewerState& state) {
   } else if (sim) {
     s.camera = sim->camera();
     cameraName = "the simulator's camera";
+  } else if (std::optional<PinholeCamera> own = cameraFromInput(options.input)) {
+    s.camera = *own;  // euroc: sensor.yaml
+    cameraName = "the camera of input '" + options.input + "'";
   } else {
     throw Error("input '" + options.input +
-                "' needs --camera camera.yml: the overlay needs the intrinsics K (only sim: "
-                "inputs bring their own camera)");
+                "' needs --camera camera.yml: the overlay needs the intrinsics K (only sim: and "
+                "euroc: inputs bring their own camera)");
   }
   if (!options.poses.empty())
     s.tracker = std::make_unique<TrajectoryReplayTracker>(

@@ -15,6 +15,25 @@ namespace {
 constexpr double kDeg = 180.0 / std::numbers::pi;
 }  // namespace
 
+std::string toString(TrajectoryAlignment alignment) {
+  switch (alignment) {
+    case TrajectoryAlignment::Se3:
+      return "se3";
+    case TrajectoryAlignment::Sim3:
+      return "sim3";
+    case TrajectoryAlignment::None:
+      break;
+  }
+  return "none";
+}
+
+TrajectoryAlignment parseTrajectoryAlignment(const std::string& text) {
+  for (TrajectoryAlignment a :
+       {TrajectoryAlignment::None, TrajectoryAlignment::Se3, TrajectoryAlignment::Sim3})
+    if (text == toString(a)) return a;
+  throw Error("alignment '" + text + "' is not one of none, se3, sim3");
+}
+
 void EvaluationParams::check() const {
   requireFiniteInRange("evaluation.max_time_difference", maxTimeDifference, 0.0, 1e6);
   requireFiniteInRange("evaluation.cube_side", cubeSide, 1e-6, 1e3);
@@ -70,23 +89,34 @@ TrajectoryEvaluation evaluateTrajectory(const TumTrajectory& groundTruth,
   ev.associatedFrames = pairs.size();
   ev.trackedFraction = static_cast<double>(pairs.size()) / groundTruth.poses.size();
 
-  if (params.align) {
-    if (pairs.size() < 3) throw Error("--align needs at least 3 associated poses");
+  if (params.alignment != TrajectoryAlignment::None) {
+    if (pairs.size() < 3)
+      throw Error(toString(params.alignment) + " alignment needs at least 3 associated poses");
     Eigen::Matrix3Xd src(3, pairs.size()), dst(3, pairs.size());
     for (std::size_t i = 0; i < pairs.size(); ++i) {
       src.col(i) = estimate.poses[pairs[i].estimate].worldToCamera.cameraCentre();
       dst.col(i) = groundTruth.poses[pairs[i].groundTruth].worldToCamera.cameraCentre();
     }
-    ev.alignment = RigidPose::fromMatrix4(Eigen::umeyama(src, dst, false));
+    const bool withScale = params.alignment == TrajectoryAlignment::Sim3;
+    const Eigen::Matrix4d T = Eigen::umeyama(src, dst, withScale);
+    const Eigen::Matrix3d sR = T.topLeftCorner<3, 3>();
+    ev.alignmentScale = withScale ? std::cbrt(sR.determinant()) : 1.0;
+    if (!(ev.alignmentScale > 0.0) || !T.allFinite())
+      throw Error(toString(params.alignment) +
+                  " alignment failed: the estimated camera centres are degenerate (all equal?)");
+    ev.alignment = RigidPose(sR / ev.alignmentScale, T.topRightCorner<3, 1>());
     ev.aligned = true;
   }
-  const RigidPose toEstimateWorld = ev.alignment.inverse();
 
-  // Poses of the estimate in the ground-truth world.
+  // Poses of the estimate in the ground-truth world: orientation R_e R_a^T, centre s R_a c_e + t_a.
   std::vector<RigidPose> est(pairs.size()), gt(pairs.size());
   for (std::size_t i = 0; i < pairs.size(); ++i) {
     gt[i] = groundTruth.poses[pairs[i].groundTruth].worldToCamera;
-    est[i] = estimate.poses[pairs[i].estimate].worldToCamera * toEstimateWorld;
+    const RigidPose& e = estimate.poses[pairs[i].estimate].worldToCamera;
+    const Eigen::Matrix3d R = e.rotation() * ev.alignment.rotation().transpose();
+    const Eigen::Vector3d c = ev.alignmentScale * (ev.alignment.rotation() * e.cameraCentre()) +
+                              ev.alignment.translation();
+    est[i] = RigidPose(R, -R * c);
   }
 
   const std::vector<Eigen::Vector3d> cube = cubeVertices(params.cubeSide);

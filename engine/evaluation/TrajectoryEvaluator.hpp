@@ -1,6 +1,9 @@
 #pragma once
 // TrajectoryEvaluator: compares an estimated camera trajectory with ground truth (both TUM files,
-// world = marker frame, so no alignment unless asked). Reports
+// world = marker frame, so no alignment unless asked: `alignment` none (default), se3 — the rigid
+// transform, or sim3 — rigid plus scale, that best maps the estimated camera centres onto the true
+// ones (Umeyama least squares), as other trajectory tools offer; every error below is measured
+// after it). Reports
 //  - ATE: per associated frame, the camera-centre distance (mm) and the rotation angle (deg);
 //  - RPE: per consecutive pair of associated frames, the error of the relative motion
 //    E = D_gt^-1 D_est with D = T_k T_{k-1}^-1 (translation mm, rotation deg);
@@ -14,6 +17,7 @@
 //    image when the camera is given);
 //  - tracked fraction: ground-truth frames with an associated estimate.
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "engine/geometry/PinholeCamera.hpp"
@@ -21,10 +25,15 @@
 
 namespace reftrack {
 
+enum class TrajectoryAlignment { None, Se3, Sim3 };
+// "none" | "se3" | "sim3"; parse throws reftrack::Error naming the accepted values.
+std::string toString(TrajectoryAlignment alignment);
+TrajectoryAlignment parseTrajectoryAlignment(const std::string& text);
+
 struct EvaluationParams {
   double maxTimeDifference = 0.005;  // s; association tolerance (half a frame at 100 Hz)
-  bool align = false;                // rigid (no scale) Umeyama alignment of estimate to truth
-  double cubeSide = 0.1;             // m; the virtual cube for reprojection error and jitter
+  TrajectoryAlignment alignment = TrajectoryAlignment::None;  // of the estimate to the truth
+  double cubeSide = 0.1;  // m; the virtual cube for reprojection error and jitter
 
   void check() const;  // throws reftrack::Error naming the bad field
 };
@@ -52,8 +61,11 @@ struct TrajectoryEvaluation {
   ErrorStats rpeTranslationMm, rpeRotationDeg;
   std::optional<ErrorStats> cubeErrorPx;  // with a camera
   std::optional<double> jitterMm, jitterPx;
-  bool aligned = false;
-  RigidPose alignment;  // estimate world -> ground-truth world (identity without --align)
+  bool aligned = false;  // alignment other than none
+  // Estimate world -> ground-truth world: X_gt = scale * R X_est + t (identity for none; scale 1
+  // for se3).
+  RigidPose alignment;
+  double alignmentScale = 1.0;
   std::vector<FrameEvaluation> frames;  // one per associated frame, in ground-truth order
   std::vector<double> rpeTimestamps;    // ground-truth timestamp of each RPE pair's second frame
   std::vector<double> rpeTranslationMmPerPair, rpeRotationDegPerPair;

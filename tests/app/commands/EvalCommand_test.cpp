@@ -1,7 +1,10 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <opencv2/imgcodecs.hpp>
+#include <random>
 
+#include "DatasetFixtures.hpp"
 #include "app/commands/CommandTestSupport.hpp"
 #include "engine/geometry/PinholeCamera.hpp"
 #include "engine/geometry/TumTrajectory.hpp"
@@ -78,4 +81,134 @@ TEST(EvalCommand, ErrorsAreClear) {
       "eval --gt " + (dir / "gt.txt").string() + " --est " + (dir / "bad.txt").string(), dir);
   EXPECT_EQ(r.exitCode, 1);
   EXPECT_NE(r.err.find("line 1"), std::string::npos) << r.err;
+}
+
+namespace {
+
+// The first number after `key` in a JSON text (e.g. "\"rmse\": ").
+double numberAfter(const std::string& json, const std::string& key, std::size_t from = 0) {
+  const std::size_t at = json.find(key, from);
+  if (at == std::string::npos) return std::nan("");
+  return std::stod(json.substr(at + key.size()));
+}
+
+}  // namespace
+
+// EuRoC ground truth (body poses at 200 Hz through T_BS, camera frames at 20 Hz) against an
+// estimate in another world frame: a known Sim(3) plus known noise on the camera centres.
+// --align sim3 leaves exactly the noise; the default (none, stated) keeps the frame offset.
+TEST(EvalCommand, EurocGroundTruthWithSim3AlignmentLeavesTheKnownNoise) {
+  const auto dir = test::freshTempDir("EvalCommand_Euroc");
+  const long long t0 = 1403636579763555584LL;
+  const auto cameraPose = [](double t) {  // slide(): 0.06 m/s along x, looking down
+    const Eigen::Matrix3d down = Eigen::Vector3d(1, -1, -1).asDiagonal();
+    const Eigen::Vector3d C(-0.1 + 0.06 * t, 0.02 + 0.1 * std::sin(0.5 * t),
+                            0.5 + 0.05 * std::cos(0.7 * t));
+    return RigidPose(down, -down * C);
+  };
+  std::vector<std::pair<long long, RigidPose>> mocap;
+  for (int k = 0; k < 3000; ++k) mocap.push_back({t0 + k * 5000000LL, cameraPose(k * 0.005)});
+  std::vector<long long> frameNs;
+  for (int k = 0; k < 300; ++k) frameNs.push_back(t0 + 2500000LL + k * 50000000LL);
+  const RigidPose tbs(Eigen::Quaterniond(0.71, 0.0, 0.0, 0.70).normalized(),
+                      Eigen::Vector3d(-0.02, -0.06, 0.01));
+  test::writeEurocSequence(dir, std::vector<cv::Mat>(300, cv::Mat(24, 32, CV_8UC1)), frameNs,
+                           PinholeCamera::fromFieldOfView({32, 24}, 60.0), tbs, mocap);
+
+  // The estimate: frames 0..279 (tracked), in a world X_est = (R^T (X_gt - t)) / s, centres with
+  // 3 mm noise per coordinate in the ground-truth frame.
+  const double s = 0.8;
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(0.9, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const Eigen::Vector3d t(1.0, -2.0, 0.3);
+  std::mt19937 rng(5);
+  std::normal_distribution<double> noise(0.0, 0.003);
+  TumTrajectory est;
+  double noiseSq = 0;
+  for (int k = 0; k < 280; ++k) {
+    const double time = frameNs[static_cast<std::size_t>(k)] * 1e-9;
+    // The camera pose at the frame time (linear interpolation between the 5 ms samples misses
+    // the curvature of the sine terms by at most 0.1 * 0.25 * 0.005^2 / 8 = 8e-8 m).
+    const RigidPose truth = cameraPose((frameNs[static_cast<std::size_t>(k)] - t0) * 1e-9);
+    const Eigen::Vector3d n(noise(rng), noise(rng), noise(rng));
+    noiseSq += n.squaredNorm();
+    const Eigen::Vector3d c = R.transpose() * (truth.cameraCentre() + n - t) / s;
+    const Eigen::Matrix3d Rwc = truth.rotation() * R;
+    est.poses.push_back({time, RigidPose(Rwc, -Rwc * c)});
+  }
+  est.save(dir / "est.txt");
+  const double noiseRmsMm = 1000.0 * std::sqrt(noiseSq / 280);
+
+  const std::string gt = "euroc:" + dir.string();
+  const auto sim3 = test::runReftrack(
+      "eval --no-plots --json --align sim3 --gt " + gt + " --est " + (dir / "est.txt").string(),
+      dir);
+  ASSERT_EQ(sim3.exitCode, 0) << sim3.err;
+  EXPECT_NE(sim3.out.find("\"alignment\": \"sim3\""), std::string::npos) << sim3.out;
+  // 300 camera frames, each with an interpolated ground-truth pose; 280 estimated and associated.
+  EXPECT_NE(sim3.out.find("\"ground_truth_frames\": 300"), std::string::npos) << sim3.out;
+  EXPECT_NE(sim3.out.find("\"associated_frames\": 280"), std::string::npos) << sim3.out;
+  EXPECT_NE(sim3.out.find("\"tracked_fraction\": 0.933333"), std::string::npos) << sim3.out;
+  // Umeyama recovers the scale to ~0.2% from 280 centres 3 mm noisy over a 0.9 m path.
+  EXPECT_NEAR(numberAfter(sim3.out, "\"alignment_scale\": "), s, 0.01 * s) << sim3.out;
+  // The fit absorbs 7 of the 840 noise degrees of freedom: residual RMS = noise RMS times
+  // sqrt(1 - 7/840) = 0.996 on average (spread ~0.2%); 2% is a generous bound.
+  const double rmse = numberAfter(sim3.out, "\"rmse\": ", sim3.out.find("ate_translation_mm"));
+  EXPECT_NEAR(rmse, noiseRmsMm, 0.02 * noiseRmsMm) << sim3.out;
+  EXPECT_LE(rmse, noiseRmsMm * 1.0001) << sim3.out;
+
+  // Default: no alignment, stated; the other world frame is metres away.
+  const auto none =
+      test::runReftrack("eval --no-plots --gt " + gt + " --est " + (dir / "est.txt").string(), dir);
+  ASSERT_EQ(none.exitCode, 0) << none.err;
+  EXPECT_NE(none.out.find("alignment: none (the default"), std::string::npos) << none.out;
+  EXPECT_NE(none.out.find("EuRoC ground truth"), std::string::npos) << none.out;
+  EXPECT_NE(none.out.find("3000 samples interpolated at 300 of the 300 frame times"),
+            std::string::npos)
+      << none.out;
+}
+
+// TUM RGB-D ground truth at the rgb.txt frame times; an estimate 50 mm off in the world gives
+// exactly 50 mm without alignment and 0 with se3.
+TEST(EvalCommand, TumGroundTruthWithoutAlignmentGivesTheKnownOffset) {
+  const auto dir = test::freshTempDir("EvalCommand_Tum");
+  const TumTrajectory gt = slide();
+  TumTrajectory mocap, est;
+  std::vector<double> times;
+  const double t0 = 1305031102.175304;
+  for (const StampedPose& p : gt.poses) {
+    times.push_back(t0 + p.timestamp);
+    mocap.poses.push_back({t0 + p.timestamp, p.worldToCamera});
+    const Eigen::Vector3d c = p.worldToCamera.cameraCentre() + Eigen::Vector3d(0, 0.03, 0.04);
+    est.poses.push_back(
+        {t0 + p.timestamp, RigidPose(p.worldToCamera.rotation(), -p.worldToCamera.rotation() * c)});
+  }
+  test::writeTumSequence(dir, std::vector<cv::Mat>(times.size(), cv::Mat(8, 8, CV_8UC3)), times,
+                         mocap);
+  est.save(dir / "est.txt");
+  const std::string args =
+      " --no-plots --json --gt tum:" + dir.string() + " --est " + (dir / "est.txt").string();
+  const auto none = test::runReftrack("eval" + args, dir);
+  ASSERT_EQ(none.exitCode, 0) << none.err;
+  EXPECT_NE(none.out.find("\"alignment\": \"none\""), std::string::npos) << none.out;
+  // Timestamps round-trip through 6 decimals on both sides: the offset is 50 mm to 1e-6 mm.
+  const std::size_t ate = none.out.find("ate_translation_mm");
+  EXPECT_NEAR(numberAfter(none.out, "\"rmse\": ", ate), 50.0, 1e-4) << none.out;
+  EXPECT_NEAR(numberAfter(none.out, "\"max\": ", ate), 50.0, 1e-4) << none.out;
+  const auto se3 = test::runReftrack("eval --align se3" + args, dir);
+  ASSERT_EQ(se3.exitCode, 0) << se3.err;
+  EXPECT_NEAR(numberAfter(se3.out, "\"max\": ", se3.out.find("ate_translation_mm")), 0.0, 1e-3)
+      << se3.out;
+}
+
+TEST(EvalCommand, BadDatasetGroundTruthIsAClearError) {
+  const auto dir = test::freshTempDir("EvalCommand_BadDataset");
+  slide().save(dir / "est.txt");
+  const auto r = test::runReftrack(
+      "eval --no-plots --gt euroc:" + dir.string() + " --est " + (dir / "est.txt").string(), dir);
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.err.find("expected DIR/mav0/cam0"), std::string::npos) << r.err;
+  const auto align = test::runReftrack("eval --align affine --gt " + (dir / "est.txt").string() +
+                                           " --est " + (dir / "est.txt").string(),
+                                       dir);
+  EXPECT_EQ(align.exitCode, 2);
 }

@@ -10,6 +10,7 @@
 #include <opencv2/imgproc.hpp>
 #include <sstream>
 
+#include "DatasetFixtures.hpp"
 #include "TestPaths.hpp"
 #include "app/simulator/SceneSimulator.hpp"
 #include "app/simulator/SimulationWriter.hpp"
@@ -286,6 +287,49 @@ TEST_F(PrepareCommandTest, PoseSourceIsRequiredExactlyOnce) {
   const CommandRun badMarker =
       runReftrack(commonArgs(scratch / "map") + " --marker DICT_6X6_250:x:0.2", scratch);
   EXPECT_EQ(badMarker.exitCode, 2) << badMarker.err;
+}
+
+// References from a recorded sequence (--input, --ref-frames): the usage rules and the errors
+// of a dataset whose ground truth does not cover a reference frame. (The whole path, prepare ->
+// track -> eval on tum: and euroc: inputs, runs in TrackCommand_test.)
+TEST_F(PrepareCommandTest, SequenceReferencesNeedFramesAPoseSourceAndCoverage) {
+  const fs::path scratch = test::freshTempDir("PrepareCommand_sequence");
+  std::vector<cv::Mat> images = {cv::imread((*dir_ / "reference_a.png").string()),
+                                 cv::imread((*dir_ / "reference_b.png").string())};
+  TumTrajectory gt;
+  gt.poses.push_back({100.0, *truthA_});  // covers the first frame only
+  test::writeTumSequence(scratch / "tum", images, {100.0, 100.5}, gt);
+  const std::string camera = " --camera " + (*dir_ / "camera.yml").string();
+  const std::string tum = "tum:" + (scratch / "tum").string();
+  const std::string out = " --out " + (scratch / "map").string();
+  // --input without --ref-frames, one reference frame, no camera for a tum: input, a dataset
+  // ground truth without --input: usage errors.
+  EXPECT_EQ(runReftrack("prepare" + camera + " --input " + tum + " --poses " + tum + out, scratch)
+                .exitCode,
+            2);
+  const CommandRun one = runReftrack(
+      "prepare" + camera + " --input " + tum + " --ref-frames 0 --poses " + tum + out, scratch);
+  EXPECT_EQ(one.exitCode, 2);
+  EXPECT_NE(one.err.find("at least 2"), std::string::npos) << one.err;
+  const CommandRun noCamera =
+      runReftrack("prepare --input " + tum + " --ref-frames 0,1 --poses " + tum + out, scratch);
+  EXPECT_EQ(noCamera.exitCode, 2);
+  EXPECT_NE(noCamera.err.find("--camera"), std::string::npos) << noCamera.err;
+  const CommandRun noInput = runReftrack(commonArgs(scratch / "map") + " --poses " + tum, scratch);
+  EXPECT_EQ(noInput.exitCode, 2);
+  EXPECT_NE(noInput.err.find("needs --input"), std::string::npos) << noInput.err;
+  // Frame 1 has no ground truth; frame 5 does not exist: runtime errors naming them.
+  const CommandRun uncovered = runReftrack(
+      "prepare" + camera + " --input " + tum + " --ref-frames 0,1 --poses " + tum + out, scratch);
+  EXPECT_EQ(uncovered.exitCode, 1);
+  EXPECT_NE(uncovered.err.find("reference frame 1 (t = 100.500000 s) has no ground-truth pose"),
+            std::string::npos)
+      << uncovered.err;
+  const CommandRun beyond = runReftrack(
+      "prepare" + camera + " --input " + tum + " --ref-frames 0,5 --poses " + tum + out, scratch);
+  EXPECT_EQ(beyond.exitCode, 1);
+  EXPECT_NE(beyond.err.find("frame 5 is beyond the 2 frames"), std::string::npos) << beyond.err;
+  EXPECT_FALSE(fs::exists(scratch / "map"));
 }
 
 TEST_F(PrepareCommandTest, ThreeReferencesFromAFolderGiveAVersionTwoMap) {

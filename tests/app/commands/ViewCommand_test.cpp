@@ -10,6 +10,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "CommandTestSupport.hpp"
+#include "DatasetFixtures.hpp"
 #include "TestPaths.hpp"
 #include "engine/geometry/PinholeCamera.hpp"
 #include "engine/geometry/TumTrajectory.hpp"
@@ -169,6 +170,36 @@ TEST(ViewCommand, NonSimulatorInputNeedsACamera) {
   const std::string seq = makeSequence(dir, "160x120");
   const auto run = test::runReftrack("view --headless --input " + seq + "/frames", dir);
   expectOneClearError(run, "needs --camera camera.yml");
+}
+
+// A EuRoC input: the camera comes from sensor.yaml (said on stdout), the replayed poses are found
+// by the dataset's timestamps and the recorded trajectory keeps them.
+TEST(ViewCommand, EurocInputBringsItsCameraAndKeepsItsTimestamps) {
+  const fs::path dir = test::freshTempDir("ViewCommand_Euroc");
+  const std::string seq = makeSequence(dir, "160x120");
+  const TumTrajectory truth = TumTrajectory::load(fs::path(seq) / "groundtruth.txt");
+  std::vector<cv::Mat> images;
+  std::vector<long long> ns;
+  TumTrajectory poses;
+  for (int k = 0; k < 3; ++k) {
+    images.push_back(cv::imread(seq + "/frames/00000" + std::to_string(k) + ".png"));
+    ns.push_back(1403636579763555584LL + k * 50000000LL);
+    poses.poses.push_back(
+        {ns.back() * 1e-9, truth.poses[static_cast<std::size_t>(k)].worldToCamera});
+  }
+  test::writeEurocSequence(dir / "euroc", images, ns, PinholeCamera::load(seq + "/camera.yml"),
+                           RigidPose(), {});
+  poses.save(dir / "poses.txt");
+  const auto run =
+      test::runReftrack("view --headless --input euroc:" + (dir / "euroc").string() + " --poses " +
+                            (dir / "poses.txt").string() + " --record " + (dir / "o.mp4").string(),
+                        dir);
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_NE(run.out.find("camera: from"), std::string::npos) << run.out;
+  const TumTrajectory recorded = TumTrajectory::load(dir / "o_trajectory.txt");
+  ASSERT_EQ(recorded.poses.size(), 3u);
+  for (std::size_t k = 0; k < 3; ++k)
+    EXPECT_NEAR(recorded.poses[k].timestamp, ns[k] * 1e-9, 2e-6) << k;  // 6 decimals written
 }
 
 TEST(ViewCommand, UsageErrorsExitWithTwo) {

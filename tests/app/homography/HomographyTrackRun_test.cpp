@@ -54,7 +54,7 @@ TEST(HomographyTrackRun, WritesOneCsvRowPerFrameAndARecording) {
   std::vector<std::string> lines;
   for (std::string l; std::getline(in, l);) lines.push_back(l);
   ASSERT_EQ(lines.size(), 9u);
-  EXPECT_EQ(lines[1].substr(0, 10), "0,tracked,");
+  EXPECT_EQ(lines[1].substr(0, 19), "0,0.000000,tracked,");
   EXPECT_GT(std::filesystem::file_size(o.record), 1000u);
   o.maxFrames = 3;
   o.record.clear();

@@ -5,9 +5,12 @@
 
 #include <opencv2/imgcodecs.hpp>
 
+#include "DatasetFixtures.hpp"
 #include "TestPaths.hpp"
+#include "app/sources/EurocSequenceSource.hpp"
 #include "app/sources/ImageFolderSource.hpp"
 #include "app/sources/SimulatorSource.hpp"
+#include "app/sources/TumSequenceSource.hpp"
 #include "app/sources/VideoFileSource.hpp"
 #include "engine/core/Error.hpp"
 #include "render/context/GlContext.hpp"
@@ -53,6 +56,24 @@ TEST(FrameSourceFactory, SimulatorInputUsesTheOptions) {
   ASSERT_NE(sim, nullptr);
   EXPECT_EQ(sim->frameCount(), 4);
   EXPECT_EQ(sim->camera().imageSize(), cv::Size(96, 72));
+}
+
+TEST(FrameSourceFactory, DatasetPrefixesOpenTheDatasetSources) {
+  const fs::path dir = test::freshTempDir("FrameSourceFactory_Datasets");
+  test::writeTumSequence(dir / "tum", {cv::Mat(8, 8, CV_8UC3)}, {1305031102.5}, {});
+  test::writeEurocSequence(dir / "euroc", {cv::Mat(8, 8, CV_8UC1)}, {1403636579763555584LL},
+                           PinholeCamera::fromFieldOfView({8, 8}, 60.0), RigidPose(), {});
+  const auto tum = openFrameSource("tum:" + (dir / "tum").string());
+  EXPECT_NE(dynamic_cast<TumSequenceSource*>(tum.get()), nullptr);
+  EXPECT_DOUBLE_EQ(tum->next()->timestamp, 1305031102.5);
+  const auto euroc = openFrameSource("euroc:" + (dir / "euroc").string());
+  EXPECT_NE(dynamic_cast<EurocSequenceSource*>(euroc.get()), nullptr);
+  EXPECT_NEAR(euroc->next()->timestamp, 1403636579.763555584, 3e-7);
+  // The folder of a layout is not an image folder: the prefix is what selects the reader.
+  EXPECT_NE(errorOf("tum:" + (dir / "euroc").string()).find("has no rgb.txt"), std::string::npos);
+  EXPECT_NE(errorOf("euroc:" + (dir / "tum").string()).find("expected DIR/mav0/cam0"),
+            std::string::npos);
+  EXPECT_NE(errorOf("euroc:/no/such/dir").find("does not exist"), std::string::npos);
 }
 
 TEST(FrameSourceFactory, BadInputsAreExplained) {

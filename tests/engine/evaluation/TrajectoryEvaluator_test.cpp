@@ -80,7 +80,7 @@ TEST(TrajectoryEvaluator, KnownRigidOffsetGivesKnownAte) {
 
   // Aligned, the rigid offset vanishes.
   EvaluationParams aligned;
-  aligned.align = true;
+  aligned.alignment = TrajectoryAlignment::Se3;
   EXPECT_NEAR(evaluateTrajectory(gt, est, aligned, &cam).ateTranslationMm.max, 0.0, 1e-6);
 }
 
@@ -124,4 +124,61 @@ TEST(ErrorStats, MatchesHandComputedValues) {
   EXPECT_DOUBLE_EQ(s.max, 4);
   EXPECT_DOUBLE_EQ(s.rmse, std::sqrt(30.0 / 4));
   EXPECT_DOUBLE_EQ(s.p95, 3.85);  // 0.95 * 3 = 2.85 -> 3 + 0.85 * (4 - 3)
+}
+
+// The estimate lives in another world frame: X_gt = s R X_est + t (a known Sim(3)), and its
+// camera centres carry known noise. Sim(3) alignment recovers s, R, t and leaves exactly the noise;
+// SE(3) cannot absorb the scale; none reports the full frame offset.
+TEST(TrajectoryEvaluator, Sim3AlignmentLeavesTheNoiseAndNoneTheKnownOffset) {
+  const TumTrajectory gt = orbit(300);
+  const double s = 1.7;
+  const Eigen::Matrix3d R =
+      Eigen::AngleAxisd(0.6, Eigen::Vector3d(0.2, -1.0, 0.5).normalized()).toRotationMatrix();
+  const Eigen::Vector3d t(0.3, -0.2, 0.1);
+  std::mt19937 rng(11);
+  std::normal_distribution<double> noise(0.0, 0.002);  // 2 mm per coordinate, ground-truth frame
+  TumTrajectory est, shifted;
+  double noiseSq = 0;
+  for (const StampedPose& p : gt.poses) {
+    const Eigen::Vector3d n(noise(rng), noise(rng), noise(rng));
+    noiseSq += n.squaredNorm();
+    const Eigen::Vector3d c = R.transpose() * (p.worldToCamera.cameraCentre() + n - t) / s;
+    const Eigen::Matrix3d Rwc = p.worldToCamera.rotation() * R;  // orientation in the est frame
+    est.poses.push_back({p.timestamp, RigidPose(Rwc, -Rwc * c)});
+    // The same trajectory moved 30 mm along x and 40 mm along z in its own world: 50 mm.
+    const Eigen::Vector3d moved = p.worldToCamera.cameraCentre() + Eigen::Vector3d(0.03, 0, 0.04);
+    shifted.poses.push_back(
+        {p.timestamp, RigidPose(p.worldToCamera.rotation(), -p.worldToCamera.rotation() * moved)});
+  }
+  const double noiseRmsMm = 1000.0 * std::sqrt(noiseSq / gt.poses.size());
+
+  EvaluationParams sim3;
+  sim3.alignment = TrajectoryAlignment::Sim3;
+  const TrajectoryEvaluation a = evaluateTrajectory(gt, est, sim3);
+  EXPECT_TRUE(a.aligned);
+  // Umeyama on 300 noisy centres: scale to ~1e-3 relative, rotation to ~0.1 degree.
+  EXPECT_NEAR(a.alignmentScale, s, 2e-3 * s);
+  EXPECT_LT(RigidPose::rotationDistance(a.alignment, RigidPose(R, t)) * 180 / M_PI, 0.1);
+  // The fit absorbs 7 of the 900 noise degrees of freedom: the residual RMS is the noise RMS
+  // times sqrt(1 - 7/900) = 0.996, so within 1% of it.
+  EXPECT_NEAR(a.ateTranslationMm.rmse, noiseRmsMm, 0.01 * noiseRmsMm);
+  EXPECT_LT(a.ateTranslationMm.rmse, noiseRmsMm);
+  // Orientations carried no noise: the only rotation error is the alignment's (< 0.1 deg).
+  EXPECT_LT(a.ateRotationDeg.max, 0.1);
+
+  EvaluationParams se3;
+  se3.alignment = TrajectoryAlignment::Se3;
+  // Without scale, the 1.7x smaller orbit (0.6 m radius) keeps errors of ~100 mm or more.
+  EXPECT_GT(evaluateTrajectory(gt, est, se3).ateTranslationMm.rmse, 100.0);
+
+  // None: the known 50 mm offset, for every frame; SE(3) and Sim(3) remove it entirely.
+  const TrajectoryEvaluation none = evaluateTrajectory(gt, shifted, {});
+  EXPECT_FALSE(none.aligned);
+  EXPECT_NEAR(none.ateTranslationMm.rmse, 50.0, 1e-9);
+  EXPECT_NEAR(none.ateTranslationMm.max, 50.0, 1e-9);
+  EXPECT_NEAR(none.ateTranslationMm.mean, 50.0, 1e-9);
+  EXPECT_NEAR(evaluateTrajectory(gt, shifted, se3).ateTranslationMm.max, 0.0, 1e-6);
+  EXPECT_NEAR(evaluateTrajectory(gt, shifted, sim3).ateTranslationMm.max, 0.0, 1e-6);
+  EXPECT_EQ(parseTrajectoryAlignment("sim3"), TrajectoryAlignment::Sim3);
+  EXPECT_THROW(parseTrajectoryAlignment("affine"), Error);
 }
