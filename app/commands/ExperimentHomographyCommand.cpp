@@ -10,6 +10,7 @@
 #include <memory>
 #include <opencv2/core/utility.hpp>
 
+#include "app/cli/CameraEffectsValidator.hpp"
 #include "app/cli/ImageSizeValidator.hpp"
 #include "app/commands/Commands.hpp"
 #include "app/homography/ColdRegistrationExperiment.hpp"
@@ -41,6 +42,7 @@ struct ExperimentArgs {
   double minScale = 0.5, maxScale = 2.0;
   std::filesystem::path data = "../shared/data/oxford-photometric";
   double pairsErrorPx = 3.0;
+  std::string effects = "none";
 };
 
 void printColdTable(const std::vector<ColdBucket>& buckets) {
@@ -138,6 +140,7 @@ void runStatic(const ExperimentArgs& a, cv::Size size, const TrackerParams& para
   o.noiseSigma = a.noise;
   o.seed = a.seed;
   o.params = params;
+  o.effects = cameraEffectsFor(a.effects, size);
   const StaticExperimentResult r = runStaticExperiment(o);
   std::vector<double> index, deviation;
   for (int k = 0; k < r.frames; ++k) {
@@ -146,8 +149,8 @@ void runStatic(const ExperimentArgs& a, cv::Size size, const TrackerParams& para
   }
   std::vector<double> ms = r.milliseconds;
   std::sort(ms.begin(), ms.end());
-  std::printf("static camera, %dx%d, 33 deg field of view, noise %.1f\n", size.width, size.height,
-              a.noise);
+  std::printf("static camera, %dx%d, 33 deg field of view, noise %.1f, effects %s\n", size.width,
+              size.height, a.noise, a.effects.c_str());
   std::printf("%-12s %-22s %-22s %-12s\n", "registered", "mean centre dev (px)",
               "max centre dev (px)", "ms_median");
   std::printf("%5d/%-6d %-22.4f %-22.4f %-12.3f\n\n", r.registered, r.frames, r.meanDeviationPx,
@@ -167,6 +170,7 @@ void runRotation(const ExperimentArgs& a, cv::Size size, const TrackerParams& pa
   o.seed = a.seed;
   o.params = params;
   o.calibrated = !a.uncalibrated;
+  o.effects = cameraEffectsFor(a.effects, size);
   const std::vector<RotationStep> steps = runRotationSweep(o);
   std::printf("pure rotation sweep, %dx%d, 33 deg field of view, %d trials per angle, %s\n",
               size.width, size.height, a.trials,
@@ -243,6 +247,13 @@ CommandRegistration registerExperimentHomographyCommand(CLI::App& parent) {
       ->capture_default_str();
   sub->add_option("--pairs-error", args->pairsErrorPx, "Pairs: registered below this corner error")
       ->check(CLI::Range(0.1, 100.0))
+      ->capture_default_str();
+  sub->add_option("--effects", args->effects,
+                  "Static and rotation: webcam effects (none, webcam or a comma-separated list of "
+                  "photos, blur, rolling-shutter, exposure, flicker, vignetting, noise, defocus, "
+                  "compression); rotation trials get the still ones (photos, defocus, vignetting, "
+                  "noise)")
+      ->check(cameraEffectsValidator())
       ->capture_default_str();
   sub->add_option("--params", args->params, "TrackerParams YAML")->check(CLI::ExistingFile);
   sub->add_option("--out", args->out, "Folder for the PNG plots")->capture_default_str();

@@ -9,8 +9,10 @@
 #include <memory>
 #include <opencv2/core/utility.hpp>
 
+#include "app/cli/CameraEffectsValidator.hpp"
 #include "app/cli/ImageSizeValidator.hpp"
 #include "app/commands/Commands.hpp"
+#include "app/experiments/EffectAblation.hpp"
 #include "app/experiments/SixDofPlots.hpp"
 #include "app/experiments/SixDofRuns.hpp"
 #include "app/simulator/SceneSimulator.hpp"
@@ -29,7 +31,39 @@ struct Options {
   std::filesystem::path params;
   std::filesystem::path outDir = "experiment-6dof";
   std::filesystem::path cacheDir;  // reuse rendered sequences across runs when set
+  std::string effects = "none";
+  bool effectTable = false;
+  std::vector<std::string> effectRows;  // the table's rows; empty: all
 };
+
+// Clean, each effect alone, then all of them (the webcam preset).
+void printEffectTable(const SimulationOptions& simulation, const TrackerParams& params,
+                      const std::optional<ArMotionModel>& motion,
+                      const std::filesystem::path& cacheDir, std::vector<std::string> lists) {
+  if (lists.empty()) {
+    lists = {"none"};
+    for (const std::string& name : cameraEffectNames()) lists.push_back(name);
+    lists.push_back("webcam");
+  }
+  const std::vector<EffectAblationRow> rows =
+      runEffectAblation(simulation, lists, params, motion, cacheDir);
+  std::printf(
+      "\neffect ablation: %s, %d frames, %dx%d, seed %llu, regularised PoseTracker (A, B)\n",
+      simulation.preset.c_str(), simulation.frames, simulation.size.width, simulation.size.height,
+      static_cast<unsigned long long>(simulation.seed));
+  std::printf("%-16s %8s %9s %9s %6s %10s %10s %10s  %s\n", "effects", "tracked", "cube_mean",
+              "cube_p95", "lost", "sharp_lost", "d_mean", "render_ms", "first lost");
+  const double cleanMean = rows.front().cubeMeanPx;
+  for (const EffectAblationRow& r : rows)
+    std::printf("%-16s %7.1f%% %9.3f %9.3f %6zu %10zu %+10.3f %10.1f  %s\n", r.effects.c_str(),
+                r.trackedPercent(), r.cubeMeanPx, r.cubeP95Px, r.lostFrames.size(),
+                r.sharpLostFrames.size(), r.cubeMeanPx - cleanMean, r.renderMsPerFrame,
+                r.firstLostReason.c_str());
+  std::printf(
+      "d_mean: cube mean minus the clean run's; sharp_lost: lost frames whose cube vertices move "
+      "< 1 px in the webcam exposure (%.0f ms)\n",
+      cameraEffectsFor("blur", simulation.size).exposureMs);
+}
 
 void printRun(const TrackerRun& r, std::size_t frames) {
   const TrajectoryEvaluation& e = r.evaluation;
@@ -42,6 +76,28 @@ void printRun(const TrackerRun& r, std::size_t frames) {
               cubeMean, cubeP95, r.firstHundredMeanPx, r.lastHundredMeanPx,
               e.jitterPx.value_or(NAN), r.staticJitterPx, e.ateTranslationMm.mean,
               median(r.frameMs));
+}
+
+// Paper Sec. 5.3: Q is the covariance of frame-to-frame pose changes of a recorded trajectory;
+// here the exact path of the same preset with another seed (nothing when fit is false).
+std::optional<ArMotionModel> fittedMotion(const SimulationOptions& simulation, bool fit) {
+  if (!fit) return std::nullopt;
+  SimulationOptions other = simulation;
+  other.seed += 1;
+  other.effects = {};  // the path alone
+  const SceneSimulator path(other);
+  TumTrajectory recorded;
+  for (int k = 0; k < other.frames; ++k)
+    recorded.poses.push_back({k / other.fps, path.framePose(k)});
+  ArMotionModel motion =
+      MotionModelFitter::fit(MotionModelFitter::motionVectors(recorded), 0).model;
+  const Vector6d sd = motion.processNoise().diagonal().cwiseSqrt();
+  std::printf(
+      "Q fitted to the %s path of seed %llu: SD per frame %.3g %.3g %.3g m, "
+      "%.3g %.3g %.3g rad\n",
+      other.preset.c_str(), static_cast<unsigned long long>(other.seed), sd[0], sd[1], sd[2], sd[3],
+      sd[4], sd[5]);
+  return motion;
 }
 
 CommandRegistration registerExperimentSixDofCommand(CLI::App& parent) {
@@ -63,6 +119,20 @@ CommandRegistration registerExperimentSixDofCommand(CLI::App& parent) {
   sub->add_option("--noise", o->simulation.noiseSigma, "Sensor noise SD (grey levels)")
       ->check(CLI::Range(0.0, 50.0));
   sub->add_flag("--blur", o->simulation.blur, "Motion blur");
+  sub->add_option("--effects", o->effects,
+                  "Webcam effects on the frames: none, webcam (all at typical levels) or a comma-"
+                  "separated list of photos, blur, rolling-shutter, exposure, flicker, vignetting, "
+                  "noise, defocus, compression")
+      ->check(cameraEffectsValidator())
+      ->capture_default_str();
+  sub->add_flag("--effect-table", o->effectTable,
+                "Instead of the comparison: the regularised tracker clean, with each effect "
+                "alone and with all (webcam): tracked %, cube error mean and p95, lost frames");
+  sub->add_option("--effect-rows", o->effectRows,
+                  "With --effect-table: only these rows, comma-separated (none, an effect name, "
+                  "webcam), in this order")
+      ->delimiter(',')
+      ->check(cameraEffectsValidator());
   sub->add_option("--params", o->params, "TrackerParams YAML")->check(CLI::ExistingFile);
   sub->add_flag("!--no-baseline", o->baseline, "Skip the ORB + PnP + Kalman baseline");
   sub->add_flag("!--no-fit-q", o->fitQ,
@@ -82,9 +152,15 @@ CommandRegistration registerExperimentSixDofCommand(CLI::App& parent) {
   return {
       sub, [o] {
         o->simulation.size = *parseImageSize(o->size);
+        o->simulation.effects = cameraEffectsFor(o->effects, o->simulation.size);
         cv::setNumThreads(1);
         const std::unique_ptr<render::GlContext> gl = render::createHeadlessContext();
         TrackerParams params = o->params.empty() ? TrackerParams{} : TrackerParams::load(o->params);
+        if (o->effectTable) {
+          printEffectTable(o->simulation, params, fittedMotion(o->simulation, o->fitQ), o->cacheDir,
+                           o->effectRows);
+          return;
+        }
         const SequenceMaps maps = o->simulation.referenceCount() > 2 ? SequenceMaps::AllReferences
                                                                      : SequenceMaps::TwoReferences;
         const SimulatedSequence s =
@@ -97,24 +173,7 @@ CommandRegistration registerExperimentSixDofCommand(CLI::App& parent) {
         if (s.references)
           std::printf("N-reference map: %d references, %zu 3D points\n", s.references->size(),
                       s.references->points.size());
-        std::optional<ArMotionModel> motion;
-        if (o->fitQ) {
-          // Paper Sec. 5.3: Q is the covariance of frame-to-frame pose changes of a recorded
-          // trajectory; here the exact path of the same preset with another seed.
-          SimulationOptions other = o->simulation;
-          other.seed += 1;
-          const SceneSimulator path(other);
-          TumTrajectory recorded;
-          for (int k = 0; k < other.frames; ++k)
-            recorded.poses.push_back({k / other.fps, path.framePose(k)});
-          motion = MotionModelFitter::fit(MotionModelFitter::motionVectors(recorded), 0).model;
-          const Vector6d sd = motion->processNoise().diagonal().cwiseSqrt();
-          std::printf(
-              "Q fitted to the %s path of seed %llu: SD per frame %.3g %.3g %.3g m, "
-              "%.3g %.3g %.3g rad\n",
-              other.preset.c_str(), static_cast<unsigned long long>(other.seed), sd[0], sd[1],
-              sd[2], sd[3], sd[4], sd[5]);
-        }
+        const std::optional<ArMotionModel> motion = fittedMotion(o->simulation, o->fitQ);
         params.pose.estimator = PoseEstimatorKind::Standard;
         const TrackerRun standard = runPoseTracker(s, params, "standard (Eq. 12)", motion);
         params.pose.estimator = PoseEstimatorKind::Regularised;
@@ -126,9 +185,10 @@ CommandRegistration registerExperimentSixDofCommand(CLI::App& parent) {
         std::optional<TrackerRun> baseline;
         if (o->baseline) baseline = runOrbBaseline(s);
 
-        std::printf("\n%s, %d frames, %dx%d, noise %.1f%s\n", o->simulation.preset.c_str(),
-                    o->simulation.frames, o->simulation.size.width, o->simulation.size.height,
-                    o->simulation.noiseSigma, o->simulation.blur ? ", blur" : "");
+        std::printf("\n%s, %d frames, %dx%d, noise %.1f%s, effects %s\n",
+                    o->simulation.preset.c_str(), o->simulation.frames, o->simulation.size.width,
+                    o->simulation.size.height, o->simulation.noiseSigma,
+                    o->simulation.blur ? ", blur" : "", o->effects.c_str());
         std::printf("%-22s %8s %9s %9s %9s %9s %9s %9s %9s %9s\n", "tracker", "tracked",
                     "cube_mean", "cube_p95", "first100", "last100", "jitter_px", "sd_px", "ATE_mm",
                     "ms_median");

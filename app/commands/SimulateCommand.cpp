@@ -3,6 +3,7 @@
 #include <iostream>
 #include <memory>
 
+#include "app/cli/CameraEffectsValidator.hpp"
 #include "app/cli/ImageSizeValidator.hpp"
 #include "app/commands/Commands.hpp"
 #include "app/simulator/SceneSimulator.hpp"
@@ -18,6 +19,7 @@ struct SimulateArgs {
   SimulationOptions options;
   std::string size = "640x480";
   std::filesystem::path out;
+  std::string effects = "none";
 };
 
 CommandRegistration registerSimulateCommand(CLI::App& parent) {
@@ -46,6 +48,13 @@ CommandRegistration registerSimulateCommand(CLI::App& parent) {
       ->check(CLI::Range(0.0, 100.0))
       ->capture_default_str();
   sub->add_flag("--blur", o.blur, "Motion blur (mean of 5 sub-frame renders)");
+  sub->add_option(
+         "--effects", args->effects,
+         "Webcam effects: none, webcam (all at typical levels) or a comma-separated list "
+         "of photos, blur, rolling-shutter, exposure, flicker, vignetting, noise, defocus, "
+         "compression")
+      ->check(cameraEffectsValidator())
+      ->capture_default_str();
   sub->add_option("--fov", o.fovDeg, "Horizontal field of view, degrees")
       ->check(CLI::Range(10.0, 150.0))
       ->capture_default_str();
@@ -60,6 +69,7 @@ CommandRegistration registerSimulateCommand(CLI::App& parent) {
   return {sub, [args] {
             SimulationOptions options = args->options;
             options.size = *parseImageSize(args->size);
+            options.effects = cameraEffectsFor(args->effects, options.size);
             options.check();
             const auto context = render::createHeadlessContext();
             SceneSimulator sim(options);

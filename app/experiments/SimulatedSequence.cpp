@@ -64,7 +64,7 @@ std::string cacheKey(const SimulationOptions& o) {
   std::ostringstream key;
   key << o.preset << "_" << o.frames << "f_" << o.size.width << "x" << o.size.height << "_seed"
       << o.seed << "_noise" << o.noiseSigma << (o.blur ? "_blur" : "") << "_fov" << o.fovDeg
-      << "_fps" << o.fps;
+      << "_fps" << o.fps << o.effects.key();
   return key.str();
 }
 

@@ -8,6 +8,7 @@
 
 #include "app/cli/ProgressBar.hpp"
 #include "app/homography/HomographyGroundTruth.hpp"
+#include "app/simulator/CameraEffectsPipeline.hpp"
 #include "app/simulator/SceneSimulator.hpp"
 #include "app/simulator/SensorNoise.hpp"
 #include "engine/core/Error.hpp"
@@ -59,6 +60,7 @@ void RotationSweepOptions::check() const {
   if (!(noiseSigma >= 0.0 && noiseSigma <= 100.0))
     throw Error("rotation sweep: noiseSigma must be in [0, 100]");
   params.check();
+  effects.check();
 }
 
 std::vector<RotationStep> runRotationSweep(const RotationSweepOptions& options) {
@@ -70,7 +72,15 @@ std::vector<RotationStep> runRotationSweep(const RotationSweepOptions& options) 
   sim.fovDeg = options.fovDeg;
   sim.seed = options.seed;
   sim.noiseSigma = options.noiseSigma;
+  sim.effects.photos = options.effects.photos;
   SceneSimulator simulator(sim);
+  const CameraEffectsPipeline camera(
+      options.effects, CameraSetup{options.size, 30.0, 1, options.seed, options.noiseSigma},
+      [](double) { return cv::Mat(); });
+  const auto still = [&](const cv::Mat& clean, std::uint64_t seed) {
+    return options.effects.any() ? camera.still(clean, seed)
+                                 : addSensorNoise(clean, seed, options.noiseSigma);
+  };
   const Eigen::Matrix3d K = simulator.camera().K();
   const RigidPose poseA = simulator.referencePoseA();
   const cv::Mat cleanReference = simulator.renderView(poseA, 0, 0.0);
@@ -97,9 +107,8 @@ std::vector<RotationStep> runRotationSweep(const RotationSweepOptions& options) 
       const int side = t % 2;
       const std::uint64_t trialSeed =
           mixSeed(options.seed, static_cast<std::uint64_t>(s) * 100003u + t);
-      const cv::Mat reference =
-          addSensorNoise(cleanReference, mixSeed(trialSeed, 1), sim.noiseSigma);
-      const cv::Mat frame = addSensorNoise(clean[side], mixSeed(trialSeed, 2), sim.noiseSigma);
+      const cv::Mat reference = still(cleanReference, mixSeed(trialSeed, 1));
+      const cv::Mat frame = still(clean[side], mixSeed(trialSeed, 2));
       ++step.trials;
       try {
         HomographyTracker tracker(

@@ -13,6 +13,7 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
+#include "app/simulator/CameraEffects.hpp"
 #include "engine/config/TrackerParams.hpp"
 
 namespace reftrack::app {
@@ -32,6 +33,9 @@ struct RotationSweepOptions {
   // rotation-only model, homography.rotation_model); false: the general homography alone.
   bool calibrated = true;
   TrackerParams params;
+  // Webcam effects: photos in the scene and the still effects (defocus, vignetting, sensor
+  // noise) on the reference and the frame of every trial; each trial is a cold pair of stills.
+  CameraEffects effects;
   void check() const;  // throws reftrack::Error naming the bad field
 };
 

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "app/cli/ProgressBar.hpp"
+#include "app/simulator/CameraEffectsPipeline.hpp"
 #include "app/simulator/SceneSimulator.hpp"
 #include "app/simulator/SensorNoise.hpp"
 #include "engine/core/Error.hpp"
@@ -22,6 +23,7 @@ void StaticExperimentOptions::check() const {
   if (!(noiseSigma >= 0.0 && noiseSigma <= 100.0))
     throw Error("static experiment: noiseSigma must be in [0, 100]");
   params.check();
+  effects.check();
 }
 
 StaticExperimentResult runStaticExperiment(const StaticExperimentOptions& options) {
@@ -33,10 +35,17 @@ StaticExperimentResult runStaticExperiment(const StaticExperimentOptions& option
   sim.fovDeg = options.fovDeg;
   sim.seed = options.seed;
   sim.noiseSigma = options.noiseSigma;
+  sim.effects.photos = options.effects.photos;
   SceneSimulator simulator(sim);
   // One clean render; every frame (and the reference) differs only by its sensor noise.
   const cv::Mat clean = simulator.renderView(simulator.referencePoseA(), 0, 0.0);
-  const cv::Mat reference = addSensorNoise(clean, mixSeed(options.seed, 0xA11CE), sim.noiseSigma);
+  CameraEffectsPipeline camera(
+      options.effects,
+      CameraSetup{options.size, 30.0, options.frames, options.seed, sim.noiseSigma},
+      [&](double) { return clean; });
+  const cv::Mat reference =
+      options.effects.any() ? camera.still(clean, mixSeed(options.seed, 0xA11CE))
+                            : addSensorNoise(clean, mixSeed(options.seed, 0xA11CE), sim.noiseSigma);
   HomographyTracker tracker(reference, options.params);
   const cv::Point2d centre((options.size.width - 1) / 2.0, (options.size.height - 1) / 2.0);
 
@@ -45,8 +54,11 @@ StaticExperimentResult runStaticExperiment(const StaticExperimentOptions& option
   double sum = 0;
   ProgressBar progress("static", static_cast<std::size_t>(options.frames));
   for (int k = 0; k < options.frames; ++k) {
-    const cv::Mat frame = addSensorNoise(
-        clean, mixSeed(options.seed, static_cast<std::uint64_t>(k) + 1), sim.noiseSigma);
+    const cv::Mat frame =
+        options.effects.any()
+            ? camera.frame(k)
+            : addSensorNoise(clean, mixSeed(options.seed, static_cast<std::uint64_t>(k) + 1),
+                             sim.noiseSigma);
     const auto t0 = std::chrono::steady_clock::now();
     const HomographyTrackResult r = tracker.track(frame);
     out.milliseconds.push_back(

@@ -8,6 +8,7 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
+#include "app/simulator/CameraEffects.hpp"
 #include "engine/config/TrackerParams.hpp"
 
 namespace reftrack::app {
@@ -19,6 +20,9 @@ struct StaticExperimentOptions {
   double noiseSigma = 2.0;  // grey levels
   std::uint64_t seed = 1;
   TrackerParams params;
+  // Webcam effects on the frames (CameraEffectsPipeline at 30 fps; the reference gets its still
+  // effects). A static camera: blur and rolling shutter change nothing.
+  CameraEffects effects;
   void check() const;  // throws reftrack::Error naming the bad field
 };
 

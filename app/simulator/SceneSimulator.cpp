@@ -1,7 +1,9 @@
 #include "app/simulator/SceneSimulator.hpp"
 
+#include "app/simulator/CameraEffectsPipeline.hpp"
 #include "app/simulator/DeskScene.hpp"
 #include "app/simulator/LookAt.hpp"
+#include "app/simulator/PhotoPrints.hpp"
 #include "app/simulator/ReferencePlacement.hpp"
 #include "app/simulator/SensorNoise.hpp"
 #include "engine/core/Error.hpp"
@@ -27,6 +29,24 @@ SceneSimulator::SceneSimulator(SimulationOptions options) : options_(std::move(o
   path_ = std::make_unique<CameraPath>(options_, scene.referenceEyeA, scene.contentCentre);
   renderer_ = std::make_unique<render::SceneRenderer>();
   for (const render::TexturedMesh& mesh : scene.meshes) renderer_->addMesh(mesh);
+  if (options_.effects.photos)
+    for (const render::TexturedMesh& mesh : photoPrintMeshes(options_.effects.photoFile))
+      renderer_->addMesh(mesh);
+  if (options_.effects.any()) {
+    CameraEffects effects = options_.effects;
+    if (options_.blur && effects.exposureMs == 0.0) effects.exposureMs = 1000.0 / options_.fps;
+    effects_ = std::make_unique<CameraEffectsPipeline>(
+        effects,
+        CameraSetup{options_.size, options_.fps, options_.frames, options_.seed,
+                    options_.noiseSigma},
+        [this](double frameTime) {
+          // Several renders per frame average into one: 2x supersampling each (measured: a
+          // render costs ~(supersample)^2), the time average smooths what it leaves.
+          const int supersample = effects_->timeSamples() > 1 ? 2 : kSupersample;
+          return renderer_->render(view(path_->at(frameTime)), supersample, nullptr,
+                                   kBackgroundBgr);
+        });
+  }
 }
 
 SceneSimulator::~SceneSimulator() = default;
@@ -61,6 +81,7 @@ cv::Mat SceneSimulator::renderView(const RigidPose& worldToCamera, std::uint64_t
 cv::Mat SceneSimulator::renderFrame(int k) {
   const RigidPose pose = framePose(k);
   const std::uint64_t seed = mixSeed(options_.seed, static_cast<std::uint64_t>(k));
+  if (effects_) return effects_->frame(k);
   if (!options_.blur) return renderView(pose, seed, options_.noiseSigma);
   cv::Mat sum(camera_.imageSize(), CV_32FC3, cv::Scalar::all(0));
   for (int i = 0; i < kBlurSubframes; ++i) {
@@ -86,8 +107,10 @@ cv::Mat SceneSimulator::renderReferenceView(int index) {
   // Views A and B keep the noise streams they always had ('A', 'B'); the others follow on.
   const std::uint64_t stream =
       index < 2 ? static_cast<std::uint64_t>(index == 0 ? 'A' : 'B') : 256u + index;
-  return renderView(references_[static_cast<std::size_t>(index)],
-                    mixSeed(mixSeed(options_.seed, kReferenceStream), stream), options_.noiseSigma);
+  const RigidPose& pose = references_[static_cast<std::size_t>(index)];
+  const std::uint64_t seed = mixSeed(mixSeed(options_.seed, kReferenceStream), stream);
+  if (effects_) return effects_->still(renderClean(pose), seed);
+  return renderView(pose, seed, options_.noiseSigma);
 }
 
 cv::Mat SceneSimulator::renderDepth(const RigidPose& worldToCamera) {

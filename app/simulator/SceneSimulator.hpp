@@ -8,6 +8,7 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
+#include "app/simulator/CameraEffects.hpp"
 #include "app/simulator/CameraPath.hpp"
 #include "app/simulator/SimulationOptions.hpp"
 #include "engine/geometry/PinholeCamera.hpp"
@@ -16,6 +17,8 @@
 #include "render/SceneRenderer.hpp"
 
 namespace reftrack::app {
+
+class CameraEffectsPipeline;
 
 class SceneSimulator {
  public:
@@ -39,7 +42,9 @@ class SceneSimulator {
       int k) const;  // world->camera, exact ground truth; throws outside 0..frames-1
 
   // BGR, noise (+ motion blur: the mean of 5 renders over [k - 1/2, k + 1/2]) per options;
-  // deterministic in (seed, k).
+  // deterministic in (seed, k). With options.effects on, CameraEffectsPipeline makes it (a
+  // --blur without effects.exposureMs: a one-frame exposure); reference views then get its
+  // still effects (defocus, vignetting, sensor noise). framePose(k) never changes.
   cv::Mat renderFrame(int k);
   cv::Mat renderReference(char which);  // 'A' or 'B' (with sensor noise)
   // Reference view `index` (0 = A, 1 = B, ...; with sensor noise); throws outside the range.
@@ -58,6 +63,7 @@ class SceneSimulator {
   Eigen::Vector3d lookedAt_ = Eigen::Vector3d::Zero();
   std::unique_ptr<CameraPath> path_;
   std::unique_ptr<render::SceneRenderer> renderer_;
+  std::unique_ptr<CameraEffectsPipeline> effects_;  // options.effects, when any is on
 };
 
 }  // namespace reftrack::app

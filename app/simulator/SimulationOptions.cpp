@@ -46,6 +46,7 @@ void SimulationOptions::check() const {
     throw Error("simulation fovDeg must be in [10, 150] degrees");
   if (!(std::isfinite(fps) && fps > 0.0 && fps <= 1000.0))
     throw Error("simulation fps must be in (0, 1000]");
+  effects.check();
   if (references != 0 && (references < 2 || references > kMaxReferences))
     throw Error("simulation references must be 0 (the preset's default) or 2.." +
                 std::to_string(kMaxReferences) + ", got " + std::to_string(references));

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "app/simulator/CameraEffects.hpp"
+
 namespace reftrack::app {
 
 struct SimulationOptions {
@@ -21,6 +23,7 @@ struct SimulationOptions {
   double fovDeg = 60.0;     // horizontal field of view
   double fps = 30.0;
   int references = 0;          // reference views; 0: the preset's default (walkaround 6, others 2)
+  CameraEffects effects;       // webcam effects (CameraEffects; all off by default)
   int referenceCount() const;  // `references`, or the preset's default when it is 0
   void check() const;          // throws reftrack::Error naming the bad field
 };

@@ -92,6 +92,10 @@ void writeSceneDescription(const SceneSimulator& sim, const fs::path& file, int 
     out << "fov_deg" << o.fovDeg;
     out << "noise_sigma" << o.noiseSigma;
     out << "motion_blur" << (o.blur ? 1 : 0);
+    out << "effects"
+        << "{";
+    o.effects.write(out);
+    out << "}";
     out << "reference_count" << o.referenceCount();
     out << "poses"
         << "groundtruth.txt and references.txt: TUM, camera pose in the world (camera->world)";

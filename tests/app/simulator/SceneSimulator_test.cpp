@@ -201,3 +201,25 @@ TEST_F(SceneSimulatorTest, RejectsBadRequests) {
   bad.frames = 0;
   EXPECT_THROW(SceneSimulator{bad}, Error);
 }
+
+TEST(SceneSimulatorEffects, WebcamEffectsLeaveTheGroundTruthExact) {
+  const std::unique_ptr<render::GlContext> context = render::createHeadlessContext();
+  SimulationOptions clean;
+  clean.frames = 4;
+  clean.size = {160, 120};
+  SimulationOptions webcam = clean;
+  webcam.effects = cameraEffectsFor("webcam", webcam.size);
+  webcam.effects.groupFrames = 2;
+  SceneSimulator a(clean), b(webcam);
+  for (int k = 0; k < clean.frames; ++k) {
+    EXPECT_TRUE(a.framePose(k).matrix4().isApprox(b.framePose(k).matrix4(), 0.0)) << k;
+    const cv::Mat frame = b.renderFrame(k);
+    ASSERT_EQ(frame.size(), clean.size);
+    ASSERT_EQ(frame.type(), CV_8UC3);
+  }
+  for (int i = 0; i < 2; ++i)
+    EXPECT_TRUE(a.referencePoses()[i].matrix4().isApprox(b.referencePoses()[i].matrix4(), 0.0));
+  // The photo print lies on the desk in the reference views: the images differ there.
+  EXPECT_GT(cv::norm(a.renderReferenceView(0), b.renderReferenceView(0), cv::NORM_L1),
+            10.0 * clean.size.area());
+}
