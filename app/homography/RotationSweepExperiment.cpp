@@ -11,6 +11,7 @@
 #include "app/simulator/SceneSimulator.hpp"
 #include "app/simulator/SensorNoise.hpp"
 #include "engine/core/Error.hpp"
+#include "engine/geometry/FrameUndistorter.hpp"
 #include "engine/homography/HomographyDlt.hpp"
 #include "engine/homography/HomographyTracker.hpp"
 
@@ -70,8 +71,10 @@ std::vector<RotationStep> runRotationSweep(const RotationSweepOptions& options) 
   sim.fovDeg = options.fovDeg;
   sim.seed = options.seed;
   sim.noiseSigma = options.noiseSigma;
+  sim.distortion = options.distortion;
   SceneSimulator simulator(sim);
   const Eigen::Matrix3d K = simulator.camera().K();
+  const FrameUndistorter undistorter(simulator.camera());
   const RigidPose poseA = simulator.referencePoseA();
   const cv::Mat cleanReference = simulator.renderView(poseA, 0, 0.0);
   const std::vector<cv::Point2d> annotations = annotationGrid(options.size, kGridCols, kGridRows);
@@ -97,9 +100,10 @@ std::vector<RotationStep> runRotationSweep(const RotationSweepOptions& options) 
       const int side = t % 2;
       const std::uint64_t trialSeed =
           mixSeed(options.seed, static_cast<std::uint64_t>(s) * 100003u + t);
-      const cv::Mat reference =
-          addSensorNoise(cleanReference, mixSeed(trialSeed, 1), sim.noiseSigma);
-      const cv::Mat frame = addSensorNoise(clean[side], mixSeed(trialSeed, 2), sim.noiseSigma);
+      const cv::Mat reference = undistorter.undistort(
+          addSensorNoise(cleanReference, mixSeed(trialSeed, 1), sim.noiseSigma));
+      const cv::Mat frame =
+          undistorter.undistort(addSensorNoise(clean[side], mixSeed(trialSeed, 2), sim.noiseSigma));
       ++step.trials;
       try {
         HomographyTracker tracker(
