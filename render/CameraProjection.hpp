@@ -18,6 +18,7 @@
 #include <opencv2/core.hpp>
 #include <optional>
 #include <utility>
+#include <vector>
 
 namespace reftrack::render {
 
@@ -52,5 +53,35 @@ std::optional<Eigen::Vector2d> projectToPixel(const Eigen::Matrix3d& K,
 std::optional<std::pair<Eigen::Vector2d, Eigen::Vector2d>> projectSegmentToPixels(
     const Eigen::Matrix3d& K, const Eigen::Matrix4d& worldToCamera, const Eigen::Vector3d& a,
     const Eigen::Vector3d& b, double nearPlane);
+
+// Lens distortion (OpenCV's coefficients k1,k2,p1,p2[,k3[,k4,k5,k6]]; empty or all zero: none).
+// Pixels of camera-frame points (Z > 0) as cv::projectPoints puts them; a point farther from the
+// optical axis than lensValidRadius (normalised image radius) comes out NaN: beyond it the radial
+// model turns back and would fold the point into the image. Throws reftrack::Error for a
+// coefficient count other than 0, 4, 5 or 8.
+std::vector<Eigen::Vector2d> projectThroughLens(const Eigen::Matrix3d& K,
+                                                const std::vector<double>& distortion,
+                                                const std::vector<Eigen::Vector3d>& cameraPoints);
+// The normalised radius at which the radial distortion r (1 + k1 r^2 + ...) / (1 + k4 r^2 + ...)
+// stops growing (searched up to 10; infinity without distortion or when it never turns back).
+double lensValidRadius(const std::vector<double>& distortion);
+
+// projectToPixel through the lens.
+std::optional<Eigen::Vector2d> projectToPixel(const Eigen::Matrix3d& K,
+                                              const std::vector<double>& distortion,
+                                              const Eigen::Matrix4d& worldToCamera,
+                                              const Eigen::Vector3d& worldPoint, double nearPlane);
+
+// The segment AB clipped to Z >= nearPlane as a polyline of pixels (empty when it lies wholly in
+// front of the near plane). Without distortion: its two end pixels. With distortion the 3-D
+// segment is cut into pieces whose ideal images are at most `maxStepPx` long (at most 1024), so
+// the straight edge bends as the lens bends it (a 4 px step keeps the chord within 0.01 px of the
+// curve for k1 = -0.3); points beyond lensValidRadius are NaN (draw only finite neighbours).
+std::vector<Eigen::Vector2d> projectSegmentThroughLens(const Eigen::Matrix3d& K,
+                                                       const std::vector<double>& distortion,
+                                                       const Eigen::Matrix4d& worldToCamera,
+                                                       const Eigen::Vector3d& a,
+                                                       const Eigen::Vector3d& b, double nearPlane,
+                                                       double maxStepPx = 4.0);
 
 }  // namespace reftrack::render

@@ -5,6 +5,7 @@
 #include <tiny_obj_loader.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -152,6 +153,33 @@ std::size_t ObjModel::triangleCount() const {
   return static_cast<std::size_t>(impl_->vertexCount / 3);
 }
 
+namespace {
+
+// The lens of lit_mesh.vert: off without distortion (then the pinhole projection alone).
+void setLensUniforms(const ShaderProgram& program, const PinholeView& view) {
+  std::vector<double> d = view.distortion;
+  const bool distort = std::any_of(d.begin(), d.end(), [](double c) { return c != 0.0; });
+  program.set("u_distort", distort ? 1 : 0);
+  if (!distort) return;
+  if (d.size() != 4 && d.size() != 5 && d.size() != 8)
+    throw Error("OBJ model: lens distortion must have 4, 5 or 8 coefficients, got " +
+                std::to_string(d.size()));
+  d.resize(8, 0.0);
+  program.set("u_worldToCamera", Eigen::Matrix4f(view.worldToCamera.cast<float>()));
+  program.set("u_focalCentre",
+              Eigen::Vector4f(static_cast<float>(view.K(0, 0)), static_cast<float>(view.K(1, 1)),
+                              static_cast<float>(view.K(0, 2)), static_cast<float>(view.K(1, 2))));
+  program.set("u_skew", static_cast<float>(view.K(0, 1)));
+  program.set("u_imageSize", Eigen::Vector2f(static_cast<float>(view.imageSize.width),
+                                             static_cast<float>(view.imageSize.height)));
+  program.set("u_distortionA", Eigen::Vector4f(static_cast<float>(d[0]), static_cast<float>(d[1]),
+                                               static_cast<float>(d[2]), static_cast<float>(d[3])));
+  program.set("u_distortionB", Eigen::Vector4f(static_cast<float>(d[4]), static_cast<float>(d[5]),
+                                               static_cast<float>(d[6]), static_cast<float>(d[7])));
+}
+
+}  // namespace
+
 void ObjModel::draw(const PinholeView& view, const ObjDrawOptions& options) {
   options.check();
   const Eigen::Matrix4d model = options.transform.modelToWorld();
@@ -168,6 +196,7 @@ void ObjModel::draw(const PinholeView& view, const ObjDrawOptions& options) {
   program.set("u_lightDirection", Eigen::Vector3f(lightWorld.cast<float>()));
   program.set("u_ambient", static_cast<float>(options.ambient));
   program.set("u_flatColour", Eigen::Vector4f(0, 0, 0, 0));
+  setLensUniforms(program, view);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LEQUAL);
   glDepthMask(GL_TRUE);

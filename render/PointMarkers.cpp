@@ -16,7 +16,8 @@ void addPointMarkers(PixelCanvas& canvas, const PinholeView& view,
                 std::to_string(worldPoints.size()) + " points (give one, or one per point)");
   if (!(radiusPx > 0)) throw Error("point markers: radius must be positive");
   for (size_t i = 0; i < worldPoints.size(); ++i) {
-    const auto pixel = projectToPixel(view.K, view.worldToCamera, worldPoints[i], view.nearPlane);
+    const auto pixel =
+        projectToPixel(view.K, view.distortion, view.worldToCamera, worldPoints[i], view.nearPlane);
     if (!pixel || !pixel->allFinite()) continue;
     canvas.addDisc(pixel->cast<float>(), radiusPx,
                    rgbaFromBgr(coloursBgr.size() == 1 ? coloursBgr[0] : coloursBgr[i]));

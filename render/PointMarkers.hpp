@@ -1,7 +1,7 @@
 #pragma once
 // PointMarkers: world points drawn as filled dots of given colours and pixel radius, centred
-// exactly on K(RX+t) (points not beyond the near plane are skipped). Drawn on top of
-// everything in the current viewport. Needs a current GL 3.3 context.
+// exactly on K(RX+t) (through view.distortion when given) (points not beyond the near plane are
+// skipped). Drawn on top of everything in the current viewport. Needs a current GL 3.3 context.
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 #include <vector>

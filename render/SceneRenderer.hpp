@@ -23,6 +23,10 @@ struct PinholeView {
   cv::Size imageSize{0, 0};
   Eigen::Matrix4d worldToCamera = Eigen::Matrix4d::Identity();  // OpenCV axes
   double nearPlane = 0.01, farPlane = 100.0;                    // metres
+  // OpenCV lens distortion k1,k2,p1,p2[,k3[,k4,k5,k6]] (empty: an ideal pinhole). The overlays
+  // drawn in pixel space (WireframeCube, PointMarkers) bend through it exactly; meshes distort
+  // per vertex (see SceneRenderer::draw).
+  std::vector<double> distortion;
 };
 
 // Holds uploaded meshes (GPU textures and buffers) and draws them.

@@ -43,14 +43,26 @@ void WireframeCube::draw(const PinholeView& view, const WireframeCubeStyle& styl
   const auto vertices = worldVertices(style);
   canvas_.clear();
   const Eigen::Vector4f edgeColour = rgbaFromBgr(style.colourBgr);
+  // Distortion bends the geometry, not the video: each edge is cut into pieces of <= 4 px
+  // projected through the lens. Measured against the other way, undistorting the frame with
+  // a precomputed cv::remap (16-bit maps) and drawing the pinhole cube over it, one thread,
+  // k1 = -0.3, medians of 200 (on the shared, loaded 2-core machine): 640x480 0.15 ms for
+  // the 12 bent edges vs 7.8 ms for the remap, 1280x720 0.18 ms vs 26 ms. Only this one
+  // also keeps the video as the camera recorded it (an undistorted frame loses its corners
+  // or gains black borders). Both are exact: bent edges put the vertex dots within 0.2 px of
+  // cv::projectPoints (WireframeCube_test), the remap moves dots to their undistorted
+  // positions within 0.05 px (FrameUndistorter_test).
   for (int i = 0; i < 8; ++i)
     for (int bit : {1, 2, 4}) {
       if (i & bit) continue;  // each edge once, from the vertex with that bit clear
-      const auto edge = projectSegmentToPixels(view.K, view.worldToCamera, vertices[i],
-                                               vertices[i | bit], view.nearPlane);
-      if (!edge || !edge->first.allFinite() || !edge->second.allFinite()) continue;
-      canvas_.addThickLine(edge->first.cast<float>(), edge->second.cast<float>(), style.lineWidthPx,
-                           edgeColour);
+      const std::vector<Eigen::Vector2d> edge =
+          projectSegmentThroughLens(view.K, view.distortion, view.worldToCamera, vertices[i],
+                                    vertices[i | bit], view.nearPlane);
+      for (std::size_t k = 1; k < edge.size(); ++k) {
+        if (!edge[k - 1].allFinite() || !edge[k].allFinite()) continue;
+        canvas_.addThickLine(edge[k - 1].cast<float>(), edge[k].cast<float>(), style.lineWidthPx,
+                             edgeColour);
+      }
     }
   if (style.vertexDots) {
     const auto& colours = vertexColoursBgr();

@@ -2,7 +2,8 @@
 // WireframeCube: the classic AR test object — a cube's 12 edges as thick lines (screen-space
 // quads, since core profile GL ignores glLineWidth > 1) and optionally its 8 vertices as dots
 // of distinct colours. In its model frame the cube spans [-e/2, e/2]^3; `modelToWorld` places
-// it. Edges are clipped at the near plane; drawn on top of the current viewport.
+// it. Edges are clipped at the near plane and, with view.distortion, bend through the lens (cut
+// into <= 4 px pieces: projectSegmentThroughLens); drawn on top of the current viewport.
 #include <Eigen/Core>
 #include <array>
 #include <opencv2/core.hpp>

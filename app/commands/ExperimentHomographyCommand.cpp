@@ -11,6 +11,7 @@
 #include <opencv2/core/utility.hpp>
 
 #include "app/cli/CameraEffectsValidator.hpp"
+#include "app/cli/DistortionOption.hpp"
 #include "app/cli/ImageSizeValidator.hpp"
 #include "app/commands/Commands.hpp"
 #include "app/homography/ColdRegistrationExperiment.hpp"
@@ -35,6 +36,7 @@ struct ExperimentArgs {
   double noise = 2.0;
   std::uint64_t seed = 1;
   bool uncalibrated = false;
+  std::vector<double> distortion;
   std::filesystem::path params;
   std::filesystem::path out = "experiment-homography";
   int coldTrials = 200;
@@ -171,12 +173,16 @@ void runRotation(const ExperimentArgs& a, cv::Size size, const TrackerParams& pa
   o.params = params;
   o.calibrated = !a.uncalibrated;
   o.effects = cameraEffectsFor(a.effects, size);
+  o.distortion = a.distortion;
   const std::vector<RotationStep> steps = runRotationSweep(o);
   std::printf("pure rotation sweep, %dx%d, 33 deg field of view, %d trials per angle, %s\n",
               size.width, size.height, a.trials,
               o.calibrated ? "calibrated (K given: the rotation-only model where the general "
                              "homography fails or rests on a thin strip)"
                            : "uncalibrated (general homography only)");
+  for (std::size_t i = 0; i < o.distortion.size(); ++i)
+    std::printf("%s%g", i ? "," : "lens distortion ", o.distortion[i]);
+  if (!o.distortion.empty()) std::printf(" (frames undistorted before registration)\n");
   std::printf("%-9s %-9s %-9s %-9s %-9s %-15s %-15s %-15s %-9s\n", "angle", "overlap", "success",
               "rot.model", "wrong", "mean err (px)", "median err", "max err", "ms_med");
   std::vector<double> angle, success, meanError, medianError;
@@ -231,6 +237,10 @@ CommandRegistration registerExperimentHomographyCommand(CLI::App& parent) {
   sub->add_option("--seed", args->seed, "Sensor noise seed")->capture_default_str();
   sub->add_flag("--uncalibrated", args->uncalibrated,
                 "Rotation: do not give the tracker K (no rotation-only model)");
+  addDistortionOption(sub, args->distortion)
+      ->description(
+          "Rotation: lens distortion k1,k2,p1,p2[,k3] of the simulated camera (frames are "
+          "undistorted before registration; errors in undistorted pixels); default none");
   sub->add_option("--cold-trials", args->coldTrials, "Cold: first frames (random views)")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();

@@ -10,6 +10,7 @@
 #include <opencv2/core/utility.hpp>
 
 #include "app/cli/CameraEffectsValidator.hpp"
+#include "app/cli/DistortionOption.hpp"
 #include "app/cli/ImageSizeValidator.hpp"
 #include "app/commands/Commands.hpp"
 #include "app/experiments/EffectAblation.hpp"
@@ -133,6 +134,9 @@ CommandRegistration registerExperimentSixDofCommand(CLI::App& parent) {
                   "webcam), in this order")
       ->delimiter(',')
       ->check(cameraEffectsValidator());
+  sub->add_option("--fov", o->simulation.fovDeg, "Horizontal field of view, degrees")
+      ->check(CLI::Range(10.0, 150.0));
+  addDistortionOption(sub, o->simulation.distortion);
   sub->add_option("--params", o->params, "TrackerParams YAML")->check(CLI::ExistingFile);
   sub->add_flag("!--no-baseline", o->baseline, "Skip the ORB + PnP + Kalman baseline");
   sub->add_flag("!--no-fit-q", o->fitQ,
@@ -185,10 +189,13 @@ CommandRegistration registerExperimentSixDofCommand(CLI::App& parent) {
         std::optional<TrackerRun> baseline;
         if (o->baseline) baseline = runOrbBaseline(s);
 
-        std::printf("\n%s, %d frames, %dx%d, noise %.1f%s, effects %s\n",
-                    o->simulation.preset.c_str(), o->simulation.frames, o->simulation.size.width,
-                    o->simulation.size.height, o->simulation.noiseSigma,
-                    o->simulation.blur ? ", blur" : "", o->effects.c_str());
+        std::printf("\n%s, %d frames, %dx%d, fov %.0f, noise %.1f%s", o->simulation.preset.c_str(),
+                    o->simulation.frames, o->simulation.size.width, o->simulation.size.height,
+                    o->simulation.fovDeg, o->simulation.noiseSigma,
+                    o->simulation.blur ? ", blur" : "");
+        for (std::size_t i = 0; i < o->simulation.distortion.size(); ++i)
+          std::printf("%s%g", i ? "," : ", distortion ", o->simulation.distortion[i]);
+        std::printf(", effects %s\n", o->effects.c_str());
         std::printf("%-22s %8s %9s %9s %9s %9s %9s %9s %9s %9s\n", "tracker", "tracked",
                     "cube_mean", "cube_p95", "first100", "last100", "jitter_px", "sd_px", "ATE_mm",
                     "ms_median");

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "app/cli/CameraEffectsValidator.hpp"
+#include "app/cli/DistortionOption.hpp"
 #include "app/cli/ImageSizeValidator.hpp"
 #include "app/commands/Commands.hpp"
 #include "app/simulator/SceneSimulator.hpp"
@@ -58,6 +59,7 @@ CommandRegistration registerSimulateCommand(CLI::App& parent) {
   sub->add_option("--fov", o.fovDeg, "Horizontal field of view, degrees")
       ->check(CLI::Range(10.0, 150.0))
       ->capture_default_str();
+  addDistortionOption(sub, o.distortion);
   sub->add_option("--references", o.references,
                   "Reference views: A, B, then views on the walkaround arc (default: walkaround 6, "
                   "other presets 2)")

@@ -1,6 +1,8 @@
 // `reftrack view`: the AR viewer — frames from a video, an image folder or glob, a live camera or
 // the simulator, the virtual object drawn at the tracked pose, ImGui panels, recording; in a
 // window, or headless (OSMesa/EGL) for screenshots and recordings.
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -28,6 +30,38 @@ struct ViewArgs {
   std::string simSize = "640x480";
   std::filesystem::path map, reference, labels;
 };
+
+std::string describeCamera(const PinholeCamera& c) {
+  std::string text = "fx " + std::to_string(c.fx()) + " fy " + std::to_string(c.fy()) + " cx " +
+                     std::to_string(c.cx()) + " cy " + std::to_string(c.cy()) + ", distortion";
+  if (!c.hasDistortion()) return text + " none";
+  for (double d : c.distortion()) text += " " + std::to_string(d);
+  return text;
+}
+
+// Same size, K equal to 1e-7 (relative) and the same distortion (missing coefficients count as
+// zero).
+bool sameCalibration(const PinholeCamera& a, const PinholeCamera& b) {
+  if (a.imageSize() != b.imageSize() || !a.K().isApprox(b.K(), 1e-7)) return false;
+  const std::size_t n = std::max(a.distortion().size(), b.distortion().size());
+  for (std::size_t i = 0; i < n; ++i) {
+    const double da = i < a.distortion().size() ? a.distortion()[i] : 0.0;
+    const double db = i < b.distortion().size() ? b.distortion()[i] : 0.0;
+    if (std::abs(da - db) > 1e-9) return false;
+  }
+  return true;
+}
+
+// The map, when it was prepared with the viewer's camera: the tracker undistorts with the map's
+// camera and the overlay distorts with the viewer's, so they must be the same lens.
+MultiReferenceMap loadMapFor(const std::filesystem::path& folder, const PinholeCamera& camera) {
+  MultiReferenceMap map = MultiReferenceMap::load(folder);
+  if (!sameCalibration(map.camera, camera))
+    throw Error("the camera (" + describeCamera(camera) + ") differs from the one '" +
+                folder.string() + "' was prepared with (" + describeCamera(map.camera) +
+                "): prepare the map with this camera.yml");
+  return map;
+}
 
 CommandRegistration registerViewCommand(CLI::App& parent) {
   auto args = std::make_shared<ViewArgs>();
@@ -113,7 +147,7 @@ CommandRegistration registerViewCommand(CLI::App& parent) {
                                                              const TrackerParams& params) {
                 std::unique_ptr<FrameTracker> sixDof, homography;
                 if (!map.empty())
-                  sixDof = std::make_unique<PoseFrameTracker>(MultiReferenceMap::load(map), params);
+                  sixDof = std::make_unique<PoseFrameTracker>(loadMapFor(map, camera), params);
                 if (!reference.empty()) {
                   const cv::Mat ref = cv::imread(reference.string(), cv::IMREAD_COLOR);
                   if (ref.empty())

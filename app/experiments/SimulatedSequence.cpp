@@ -65,6 +65,8 @@ std::string cacheKey(const SimulationOptions& o) {
   key << o.preset << "_" << o.frames << "f_" << o.size.width << "x" << o.size.height << "_seed"
       << o.seed << "_noise" << o.noiseSigma << (o.blur ? "_blur" : "") << "_fov" << o.fovDeg
       << "_fps" << o.fps << o.effects.key();
+  for (std::size_t i = 0; i < o.distortion.size(); ++i)
+    key << (i ? "," : "_dist") << o.distortion[i];
   return key.str();
 }
 

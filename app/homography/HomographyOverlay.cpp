@@ -3,8 +3,10 @@
 #include <glad/gl.h>
 
 #include <cmath>
+#include <limits>
 
 #include "engine/homography/HomographyDlt.hpp"
+#include "engine/homography/LensTransfer.hpp"
 
 namespace reftrack::app {
 
@@ -37,21 +39,39 @@ cv::Mat HomographyOverlay::composite(const cv::Mat& frame, const PinholeCamera& 
     // straight, but points behind the camera must be dropped: the polyline breaks there).
     const double w = frame.cols - 0.5, h = frame.rows - 0.5;
     const cv::Point2d corners[4] = {{-0.5, -0.5}, {w, -0.5}, {w, h}, {-0.5, h}};
+    // Through a lens H relates the undistorted images (HomographyFrameTracker): border and
+    // labels are undistorted, mapped and distorted again (transferThroughLens), so the outline
+    // bends as the lens bends the reference's border.
+    const bool lens = camera.hasDistortion();
+    const int samples = lens ? 4 * kOutlineSamplesPerSide : kOutlineSamplesPerSide;
+    std::vector<cv::Point2d> border;
+    for (int side = 0; side < 4; ++side)
+      for (int i = 0; i < samples; ++i) {
+        const double t = static_cast<double>(i) / samples;
+        border.push_back(corners[side] * (1 - t) + corners[(side + 1) % 4] * t);
+      }
+    std::vector<cv::Point2d> mappedBorder;
+    if (lens) {
+      mappedBorder = transferThroughLens(*H, border, camera);
+    } else {
+      for (const cv::Point2d& p : border) {
+        const double z = (*H)(2, 0) * p.x + (*H)(2, 1) * p.y + (*H)(2, 2);
+        const double nan = std::numeric_limits<double>::quiet_NaN();
+        mappedBorder.push_back(z > 0 ? transferPoint(*H, p) : cv::Point2d(nan, nan));
+      }
+    }
     std::vector<cv::Point2f> outline;
     bool closed = true;
-    for (int side = 0; side < 4; ++side)
-      for (int i = 0; i < kOutlineSamplesPerSide; ++i) {
-        const double t = static_cast<double>(i) / kOutlineSamplesPerSide;
-        const cv::Point2d p = corners[side] * (1 - t) + corners[(side + 1) % 4] * t;
-        const double z = (*H)(2, 0) * p.x + (*H)(2, 1) * p.y + (*H)(2, 2);
-        const cv::Point2d q = transferPoint(*H, p);
-        if (z > 0 && std::isfinite(q.x) && std::isfinite(q.y))
-          outline.emplace_back(static_cast<float>(q.x), static_cast<float>(q.y));
-        else
-          closed = false;
-      }
+    for (const cv::Point2d& q : mappedBorder)
+      if (std::isfinite(q.x) && std::isfinite(q.y))
+        outline.emplace_back(static_cast<float>(q.x), static_cast<float>(q.y));
+      else
+        closed = false;
     if (outline.size() >= 2) annotations_.addPolyline(outline, closed, scale, kOutlineColour);
-    const std::vector<cv::Point2d> mapped = labels.mapped(*H);
+    std::vector<cv::Point2d> positions;
+    for (const Annotation& a : labels.labels()) positions.push_back(a.position);
+    const std::vector<cv::Point2d> mapped =
+        lens ? transferThroughLens(*H, positions, camera) : labels.mapped(*H);
     for (size_t i = 0; i < mapped.size(); ++i) {
       const cv::Point2d q = mapped[i];
       if (!std::isfinite(q.x) || !std::isfinite(q.y)) continue;

@@ -20,7 +20,8 @@ class HomographyOverlay {
   HomographyOverlay();
   ~HomographyOverlay();
 
-  // H: reference -> frame when the frame was registered (nullopt: no outline, no labels).
+  // H: reference -> frame when the frame was registered (nullopt: no outline, no labels); between
+  // the undistorted images when the camera has distortion (as HomographyFrameTracker gives it).
   // Returns the composited BGR image of the frame's size.
   cv::Mat composite(const cv::Mat& frame, const PinholeCamera& camera, const TrackingResult& result,
                     const OverlaySettings& settings, const std::string& label,

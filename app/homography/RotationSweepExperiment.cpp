@@ -12,6 +12,7 @@
 #include "app/simulator/SceneSimulator.hpp"
 #include "app/simulator/SensorNoise.hpp"
 #include "engine/core/Error.hpp"
+#include "engine/geometry/FrameUndistorter.hpp"
 #include "engine/homography/HomographyDlt.hpp"
 #include "engine/homography/HomographyTracker.hpp"
 
@@ -73,6 +74,7 @@ std::vector<RotationStep> runRotationSweep(const RotationSweepOptions& options) 
   sim.seed = options.seed;
   sim.noiseSigma = options.noiseSigma;
   sim.effects.photos = options.effects.photos;
+  sim.distortion = options.distortion;
   SceneSimulator simulator(sim);
   const CameraEffectsPipeline camera(
       options.effects, CameraSetup{options.size, 30.0, 1, options.seed, options.noiseSigma},
@@ -82,6 +84,7 @@ std::vector<RotationStep> runRotationSweep(const RotationSweepOptions& options) 
                                  : addSensorNoise(clean, seed, options.noiseSigma);
   };
   const Eigen::Matrix3d K = simulator.camera().K();
+  const FrameUndistorter undistorter(simulator.camera());
   const RigidPose poseA = simulator.referencePoseA();
   const cv::Mat cleanReference = simulator.renderView(poseA, 0, 0.0);
   const std::vector<cv::Point2d> annotations = annotationGrid(options.size, kGridCols, kGridRows);
@@ -107,8 +110,8 @@ std::vector<RotationStep> runRotationSweep(const RotationSweepOptions& options) 
       const int side = t % 2;
       const std::uint64_t trialSeed =
           mixSeed(options.seed, static_cast<std::uint64_t>(s) * 100003u + t);
-      const cv::Mat reference = still(cleanReference, mixSeed(trialSeed, 1));
-      const cv::Mat frame = still(clean[side], mixSeed(trialSeed, 2));
+      const cv::Mat reference = undistorter.undistort(still(cleanReference, mixSeed(trialSeed, 1)));
+      const cv::Mat frame = undistorter.undistort(still(clean[side], mixSeed(trialSeed, 2)));
       ++step.trials;
       try {
         HomographyTracker tracker(

@@ -32,6 +32,10 @@ struct RotationSweepOptions {
   // The tracker is given the camera's K, as a calibrated user's would be (enables the
   // rotation-only model, homography.rotation_model); false: the general homography alone.
   bool calibrated = true;
+  // Lens distortion of the simulated camera (SimulationOptions::distortion; empty: none). The
+  // reference and frame are undistorted (FrameUndistorter) before registration, where
+  // K R K^-1 holds exactly; errors are in undistorted pixels.
+  std::vector<double> distortion;
   TrackerParams params;
   // Webcam effects: photos in the scene and the still effects (defocus, vignetting, sensor
   // noise) on the reference and the frame of every trial; each trial is a cold pair of stills.

@@ -2,11 +2,13 @@
 
 #include "app/simulator/CameraEffectsPipeline.hpp"
 #include "app/simulator/DeskScene.hpp"
+#include "app/simulator/DistortingLens.hpp"
 #include "app/simulator/LookAt.hpp"
 #include "app/simulator/PhotoPrints.hpp"
 #include "app/simulator/ReferencePlacement.hpp"
 #include "app/simulator/SensorNoise.hpp"
 #include "engine/core/Error.hpp"
+#include "render/CameraProjection.hpp"
 
 namespace reftrack::app {
 
@@ -21,6 +23,10 @@ constexpr std::uint64_t kReferenceStream = 0x5245464552454E43ull;
 SceneSimulator::SceneSimulator(SimulationOptions options) : options_(std::move(options)) {
   options_.check();
   camera_ = PinholeCamera::fromFieldOfView(options_.size, options_.fovDeg);
+  if (!options_.distortion.empty()) {
+    camera_ = PinholeCamera(camera_.K(), camera_.imageSize(), options_.distortion);
+    if (camera_.hasDistortion()) lens_ = std::make_unique<DistortingLens>(camera_, kSupersample);
+  }
   const DeskScene scene = buildDeskScene();
   marker_ = scene.marker;
   lookedAt_ = scene.contentCentre;
@@ -40,11 +46,13 @@ SceneSimulator::SceneSimulator(SimulationOptions options) : options_(std::move(o
         CameraSetup{options_.size, options_.fps, options_.frames, options_.seed,
                     options_.noiseSigma},
         [this](double frameTime) {
+          const RigidPose pose = path_->at(frameTime);
+          // Through a lens the ideal image is resampled at the lens's fixed 3x supersampling.
+          if (lens_) return renderClean(pose);
           // Several renders per frame average into one: 2x supersampling each (measured: a
           // render costs ~(supersample)^2), the time average smooths what it leaves.
           const int supersample = effects_->timeSamples() > 1 ? 2 : kSupersample;
-          return renderer_->render(view(path_->at(frameTime)), supersample, nullptr,
-                                   kBackgroundBgr);
+          return renderer_->render(view(pose), supersample, nullptr, kBackgroundBgr);
         });
   }
 }
@@ -69,8 +77,19 @@ render::PinholeView SceneSimulator::view(const RigidPose& worldToCamera) const {
   return v;
 }
 
+render::PinholeView SceneSimulator::idealView(const RigidPose& worldToCamera, int scale) const {
+  render::PinholeView v = view(worldToCamera);
+  v.K = render::supersampledK(lens_->idealK(), scale);
+  v.imageSize = cv::Size(lens_->idealSize().width * scale, lens_->idealSize().height * scale);
+  return v;
+}
+
 cv::Mat SceneSimulator::renderClean(const RigidPose& worldToCamera) {
-  return renderer_->render(view(worldToCamera), kSupersample, nullptr, kBackgroundBgr);
+  if (!lens_) return renderer_->render(view(worldToCamera), kSupersample, nullptr, kBackgroundBgr);
+  // Through the lens: the ideal image, supersampled, resampled where the lens puts each pixel.
+  const cv::Mat ideal =
+      renderer_->render(idealView(worldToCamera, kSupersample), 1, nullptr, kBackgroundBgr);
+  return lens_->distortSupersampled(ideal);
 }
 
 cv::Mat SceneSimulator::renderView(const RigidPose& worldToCamera, std::uint64_t noiseSeed,
@@ -117,8 +136,12 @@ cv::Mat SceneSimulator::renderDepth(const RigidPose& worldToCamera) {
   // No supersampling: each pixel's depth is that of the surface at its centre, not a blend of
   // surfaces across an edge.
   cv::Mat depth;
-  renderer_->render(view(worldToCamera), 1, &depth, kBackgroundBgr);
-  return depth;
+  if (!lens_) {
+    renderer_->render(view(worldToCamera), 1, &depth, kBackgroundBgr);
+    return depth;
+  }
+  renderer_->render(idealView(worldToCamera, 1), 1, &depth, kBackgroundBgr);
+  return lens_->distortDepth(depth);
 }
 
 }  // namespace reftrack::app

@@ -2,7 +2,10 @@
 // SceneSimulator: renders the fixed desk scene (DeskScene) along a camera path (CameraPath) with
 // exact ground truth. Images are rendered 3x supersampled (anti-aliased like a real camera), then
 // get Gaussian sensor noise seeded from (seed, frame) — the same options give byte-identical
-// frames. Renders with the GL context current on the calling thread; construct and use it there.
+// frames. With options.distortion the images are seen through that radial-tangential lens
+// (DistortingLens: rendered on a larger ideal canvas and remapped; camera() carries the
+// coefficients). Renders with the GL context current on the calling thread; construct and use it
+// there.
 #include <cstdint>
 #include <memory>
 #include <opencv2/core.hpp>
@@ -19,6 +22,7 @@
 namespace reftrack::app {
 
 class CameraEffectsPipeline;
+class DistortingLens;
 
 class SceneSimulator {
  public:
@@ -50,10 +54,13 @@ class SceneSimulator {
   // Reference view `index` (0 = A, 1 = B, ...; with sensor noise); throws outside the range.
   cv::Mat renderReferenceView(int index);
   cv::Mat renderView(const RigidPose& worldToCamera, std::uint64_t noiseSeed, double noiseSigma);
-  cv::Mat renderDepth(const RigidPose& worldToCamera);  // CV_32F camera z in metres (true surface)
+  // CV_32F camera z in metres (true surface; through the lens: of the surface within 0.5 px).
+  cv::Mat renderDepth(const RigidPose& worldToCamera);
 
  private:
   render::PinholeView view(const RigidPose& worldToCamera) const;
+  // The lens's ideal canvas at `scale` times its size (lens_ only).
+  render::PinholeView idealView(const RigidPose& worldToCamera, int scale) const;
   cv::Mat renderClean(const RigidPose& worldToCamera);  // CV_8UC3, no noise
 
   SimulationOptions options_;
@@ -64,6 +71,7 @@ class SceneSimulator {
   std::unique_ptr<CameraPath> path_;
   std::unique_ptr<render::SceneRenderer> renderer_;
   std::unique_ptr<CameraEffectsPipeline> effects_;  // options.effects, when any is on
+  std::unique_ptr<DistortingLens> lens_;            // null without distortion
 };
 
 }  // namespace reftrack::app

@@ -47,6 +47,12 @@ void SimulationOptions::check() const {
   if (!(std::isfinite(fps) && fps > 0.0 && fps <= 1000.0))
     throw Error("simulation fps must be in (0, 1000]");
   effects.check();
+  if (!distortion.empty() && distortion.size() != 4 && distortion.size() != 5)
+    throw Error("simulation distortion must be k1,k2,p1,p2[,k3] (4 or 5 values), got " +
+                std::to_string(distortion.size()));
+  for (double d : distortion)
+    if (!(std::isfinite(d) && std::abs(d) <= 10.0))
+      throw Error("simulation distortion coefficients must be finite and within [-10, 10]");
   if (references != 0 && (references < 2 || references > kMaxReferences))
     throw Error("simulation references must be 0 (the preset's default) or 2.." +
                 std::to_string(kMaxReferences) + ", got " + std::to_string(references));

@@ -1,8 +1,8 @@
 #pragma once
 // SimulationOptions: what `reftrack simulate` renders — camera path preset, frame count, image
 // size, seed (sensor noise and hand shake; the scene itself never changes), noise level, motion
-// blur, field of view, frame rate and the number of reference views. check() throws reftrack::Error
-// naming the bad field.
+// blur, field of view, frame rate, the number of reference views and the lens distortion. check()
+// throws reftrack::Error naming the bad field.
 #include <cstdint>
 #include <opencv2/core.hpp>
 #include <optional>
@@ -22,8 +22,10 @@ struct SimulationOptions {
   bool blur = false;        // motion blur (average of sub-frame renders)
   double fovDeg = 60.0;     // horizontal field of view
   double fps = 30.0;
-  int references = 0;          // reference views; 0: the preset's default (walkaround 6, others 2)
-  CameraEffects effects;       // webcam effects (CameraEffects; all off by default)
+  int references = 0;     // reference views; 0: the preset's default (walkaround 6, others 2)
+  CameraEffects effects;  // webcam effects (CameraEffects; all off by default)
+  // Lens distortion, OpenCV order k1,k2,p1,p2[,k3]; empty (or all zero): an ideal pinhole.
+  std::vector<double> distortion;
   int referenceCount() const;  // `references`, or the preset's default when it is 0
   void check() const;          // throws reftrack::Error naming the bad field
 };

@@ -2,6 +2,8 @@
 
 #include "engine/core/Error.hpp"
 #include "engine/features/CornerDetector.hpp"
+#include "engine/geometry/PixelDistortion.hpp"
+#include "engine/homography/LensTransfer.hpp"
 
 namespace reftrack::app {
 
@@ -17,28 +19,55 @@ HomographyFrameTracker::HomographyFrameTracker(const cv::Mat& reference,
                 std::to_string(camera_->imageSize().width) + "x" +
                 std::to_string(camera_->imageSize().height) + " but the reference is " +
                 std::to_string(reference_.cols) + "x" + std::to_string(reference_.rows));
+  if (camera_ && camera_->hasDistortion()) {
+    undistorter_.emplace(*camera_);
+    reference_ = undistorter_->undistort(reference_);
+  }
   applyParams(params);
 }
 
 TrackingResult HomographyFrameTracker::process(const cv::Mat& frame, int, double) {
-  last_ = tracker_->track(frame);
+  last_ = tracker_->track(undistorter_ ? undistorter_->undistort(toGray8(frame)) : frame);
   TrackingResult r;
   r.status = last_.tracked ? "tracking" : "lost";
   if (!last_.tracked && !last_.failure.empty()) r.status += ": " + last_.failure;
   for (const auto& [stage, ms] : last_.stageMs) r.stages.push_back({stage, ms});
   r.matches = last_.matches;
   r.inliers = last_.inliers;
-  r.debug.corners = last_.frameCorners;
+  r.debug.corners = toRecorded(last_.frameCorners);
   mappedLabels_.clear();
   if (last_.tracked) {
-    r.debug.matches = last_.inlierMatches;  // reference position -> frame position
+    // reference position -> frame position
+    if (undistorter_) {
+      std::vector<cv::Point2f> from, to;
+      for (const auto& [a, b] : last_.inlierMatches) {
+        from.push_back(a);
+        to.push_back(b);
+      }
+      from = toRecorded(from);
+      to = toRecorded(to);
+      for (std::size_t i = 0; i < from.size(); ++i) r.debug.matches.emplace_back(from[i], to[i]);
+    } else {
+      r.debug.matches = last_.inlierMatches;
+    }
     r.H = last_.H.inv();
-    mappedLabels_ = labels_.mapped(last_.H);
+    if (undistorter_) {
+      std::vector<cv::Point2d> positions;
+      for (const Annotation& a : labels_.labels()) positions.push_back(a.position);
+      mappedLabels_ = transferThroughLens(last_.H, positions, *camera_);
+    } else {
+      mappedLabels_ = labels_.mapped(last_.H);
+    }
     if (camera_)
       r.worldToCamera =
           RigidPose(rotationFromHomography(last_.H, camera_->K()), Eigen::Vector3d::Zero());
   }
   return r;
+}
+
+std::vector<cv::Point2f> HomographyFrameTracker::toRecorded(
+    const std::vector<cv::Point2f>& undistorted) const {
+  return undistorter_ ? distortPixels(*camera_, undistorted) : undistorted;
 }
 
 void HomographyFrameTracker::applyParams(const TrackerParams& params) {

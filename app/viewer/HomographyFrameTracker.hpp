@@ -5,11 +5,15 @@
 // H (frame -> reference, as FrameTracker documents) and, given the camera, the rotation-only pose
 // R = K^-1 H K (world = the reference camera's frame, zero translation). Labels of the reference
 // frame are mapped into each registered frame (mappedLabels()). The camera's K also enables the
-// tracker's rotation-only model (homography.rotation_model).
+// tracker's rotation-only model (homography.rotation_model). A camera with lens distortion has
+// the reference and every frame undistorted (FrameUndistorter) before registration: the
+// homography (last().H, TrackingResult H, the pose) then relates undistorted pixels, while the
+// debug layers and mappedLabels() are distorted back onto the recorded frame.
 #include <memory>
 #include <optional>
 
 #include "app/viewer/FrameTracker.hpp"
+#include "engine/geometry/FrameUndistorter.hpp"
 #include "engine/geometry/PinholeCamera.hpp"
 #include "engine/homography/AnnotationSet.hpp"
 #include "engine/homography/HomographyTracker.hpp"
@@ -36,7 +40,11 @@ class HomographyFrameTracker : public FrameTracker {
   const HomographyTracker& tracker() const { return *tracker_; }
 
  private:
-  cv::Mat reference_;
+  // Undistorted pixels -> the recorded frame's (unchanged without distortion).
+  std::vector<cv::Point2f> toRecorded(const std::vector<cv::Point2f>& undistorted) const;
+
+  cv::Mat reference_;  // grey; undistorted when the camera has distortion
+  std::optional<FrameUndistorter> undistorter_;
   std::unique_ptr<HomographyTracker> tracker_;
   std::optional<PinholeCamera> camera_;
   AnnotationSet labels_;

@@ -64,6 +64,7 @@ void OverlayCompositor::draw(const cv::Mat& frame, const PinholeCamera& camera,
     view.K = camera.K();
     view.imageSize = frame.size();
     view.worldToCamera = result.worldToCamera->matrix4();
+    view.distortion = camera.distortion();  // the overlay bends as the lens bent the video
     drawObject(view, settings);
   }
 

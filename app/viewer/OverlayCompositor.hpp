@@ -3,7 +3,8 @@
 // wireframe cube or an OBJ model) for camera K and the tracked world->camera pose, then the 2-D
 // debug layers (corners, matches, epipolar lines) and a status label — into the current render
 // target. Used by the viewer window, headless runs, `demo` and `track --record`. The overlay is
-// an ideal pinhole projection (lens distortion is not applied). Needs a current GL 3.3 context.
+// projected through the camera's lens distortion, so it lands on the distorted video where the
+// lens puts it (render::PinholeView::distortion). Needs a current GL 3.3 context.
 #include <memory>
 #include <opencv2/core.hpp>
 #include <string>

@@ -4,6 +4,7 @@
 
 #include <Eigen/Geometry>
 #include <fstream>
+#include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "TestPaths.hpp"
@@ -172,4 +173,58 @@ TEST_F(ObjModelTest, RejectsBadTransforms) {
   options.ambient = 1.5;
   EXPECT_THROW(cube.draw(modelView(), options), Error);
   EXPECT_THROW(ObjModel(LitMesh{}), Error);
+}
+
+namespace {
+
+// Pixels more than 1 px inside the hull of `points` left empty plus pixels more than 1 px
+// outside it covered.
+int hullMismatch(const cv::Mat& image, const std::vector<cv::Point2f>& points) {
+  std::vector<cv::Point2f> hull;
+  cv::convexHull(points, hull);
+  cv::Mat grey;
+  cv::cvtColor(image, grey, cv::COLOR_BGR2GRAY);
+  int wrong = 0;
+  for (int y = 0; y < image.rows; ++y)
+    for (int x = 0; x < image.cols; ++x) {
+      const double distance = cv::pointPolygonTest(hull, cv::Point2f(x, y), true);
+      const bool covered = grey.at<uchar>(y, x) != 0;
+      if ((distance > 1.0 && !covered) || (distance < -1.0 && covered)) ++wrong;
+    }
+  return wrong;
+}
+
+}  // namespace
+
+// Through a k1 = -0.3 lens each vertex of the cube lands where cv::projectPoints puts it (the
+// vertex shader applies OpenCV's model), so the silhouette is the hull of the distorted vertices
+// (its edges are straight between them: the cube's faces are single quads) and not the pinhole
+// one.
+TEST_F(ObjModelTest, DistortedCubeCoversTheHullOfItsDistortedVertices) {
+  ObjModel cube(modelsDir() / "cube.obj");
+  PinholeView view = modelView();
+  view.distortion = {-0.3, 0.0, 0.0, 0.0};
+  ObjDrawOptions options;
+  options.transform.scale = 0.2;
+  options.transform.offset = {0.18, 0.1, 0.05};  // off-centre, where the lens bends more
+  const cv::Mat image = renderModel(cube, view, options);
+  cv::Matx33d K;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) K(r, c) = view.K(r, c);
+  std::vector<cv::Point2f> distorted, ideal;
+  for (int i = 0; i < 8; ++i) {
+    const Eigen::Vector3d model((i & 1) ? 0.5 : -0.5, (i & 2) ? 0.5 : -0.5, (i & 4) ? 0.5 : -0.5);
+    const Eigen::Vector3d world =
+        options.transform.modelToWorld().topLeftCorner<3, 3>() * model + options.transform.offset;
+    const Eigen::Vector3d Xc = view.worldToCamera.topLeftCorner<3, 3>() * world +
+                               view.worldToCamera.topRightCorner<3, 1>();
+    std::vector<cv::Point2d> p;
+    cv::projectPoints(std::vector<cv::Point3d>{{Xc.x(), Xc.y(), Xc.z()}}, cv::Vec3d::all(0),
+                      cv::Vec3d::all(0), K, view.distortion, p);
+    distorted.emplace_back(static_cast<float>(p[0].x), static_cast<float>(p[0].y));
+    const Eigen::Vector2d q = test::projectPoint(view.K, view.worldToCamera, world);
+    ideal.emplace_back(static_cast<float>(q.x()), static_cast<float>(q.y()));
+  }
+  EXPECT_EQ(hullMismatch(image, distorted), 0);
+  EXPECT_GT(hullMismatch(image, ideal), 50);  // the pinhole hull does not fit: not vacuous
 }

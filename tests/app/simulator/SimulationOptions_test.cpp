@@ -47,6 +47,14 @@ TEST(SimulationOptions, CheckNamesTheBadField) {
       {[](SimulationOptions& o) { o.fps = std::numeric_limits<double>::infinity(); }, "fps"},
       {[](SimulationOptions& o) { o.references = 1; }, "references"},
       {[](SimulationOptions& o) { o.references = kMaxReferences + 1; }, "references"},
+      {[](SimulationOptions& o) {
+         o.distortion = {-0.3, 0.0, 0.0};
+       },
+       "distortion"},
+      {[](SimulationOptions& o) {
+         o.distortion = {-0.3, std::nan(""), 0.0, 0.0};
+       },
+       "distortion"},
   };
   for (const auto& [mutate, field] : cases) {
     SimulationOptions o;

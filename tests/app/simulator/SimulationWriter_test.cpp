@@ -133,3 +133,18 @@ TEST(SimulationWriter, WritesEveryReferenceViewAndItsPose) {
   cv::FileStorage scene((dir / "scene.yml").string(), cv::FileStorage::READ);
   EXPECT_EQ(static_cast<int>(scene["reference_count"]), 6);
 }
+
+// A lens given in the options reaches camera.yml, the file every command reads.
+TEST(SimulationWriter, CameraFileCarriesTheLensDistortion) {
+  const auto context = render::createHeadlessContext();
+  SimulationOptions o = smallRun();
+  o.frames = 1;
+  o.fovDeg = 50.0;
+  o.distortion = {-0.3, 0.05, 0.001, -0.002, 0.0};
+  SceneSimulator sim(o);
+  const fs::path dir = test::freshTempDir("SimulationWriter_Distortion");
+  writeSimulation(sim, dir);
+  const PinholeCamera camera = PinholeCamera::load(dir / "camera.yml");
+  ASSERT_EQ(camera.distortion().size(), 5u);
+  for (std::size_t i = 0; i < 5; ++i) EXPECT_DOUBLE_EQ(camera.distortion()[i], o.distortion[i]);
+}
