@@ -418,14 +418,22 @@ HomographyTrackResult HomographyTracker::track(const cv::Mat& frame) {
     if (dense.tracked) a = std::move(dense);
   }
   std::optional<cv::Matx33d> coastNext;
+  std::string guidedFailure;  // why the guided attempt (if any) failed
+  bool cold = false;          // a cold attempt followed it
   if (!a.tracked) {
     coastNext = a.prediction;
+    if (a.prediction)
+      guidedFailure =
+          (coasting ? "coasted prediction: " : "guided by the previous frame: ") + a.failure;
+    else if (base)
+      guidedFailure = "coasting ended: no frame-to-frame homography";
     if (!base || coasting) {
       // The guided attempt's frame corners seed the next frame-to-frame homography only if the
       // unguided attempt does not replace them.
       prevPoints_ = std::move(a.points);
       prevPatches_ = std::move(a.patches);
       a = coldAttempt(gray, stageMs, keypointGuided);
+      cold = true;
     }
   }
 
@@ -438,7 +446,18 @@ HomographyTrackResult HomographyTracker::track(const cv::Mat& frame) {
   out.matches = a.matches;
   out.inliers = a.est.inlierCount;
   out.inlierRatio = a.inlierRatio;
-  out.failure = a.failure;
+  // Why a lost frame is lost (every one gets a reason): too few corners first (black,
+  // textureless or blurred), else the attempts made, in order.
+  if (!a.tracked) {
+    const int needed = std::max(4, params_.ransac.minInliers);
+    if (static_cast<int>(a.points.size()) < needed)
+      out.failure = "too few corners (" + std::to_string(a.points.size()) +
+                    "): textureless, black or blurred frame";
+    else if (cold)
+      out.failure = (guidedFailure.empty() ? "" : guidedFailure + "; ") + "cold: " + a.failure;
+    else
+      out.failure = guidedFailure;
+  }
   if (a.est.success) out.H = a.est.H;
   for (size_t i = 0; i < a.src.size(); ++i)
     if (a.est.inliers[i]) out.inlierMatches.emplace_back(a.src[i], a.dst[i]);
