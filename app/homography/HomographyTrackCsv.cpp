@@ -8,8 +8,19 @@
 
 namespace reftrack::app {
 
+namespace {
+
+// A CSV field: quoted, inner quotes doubled (reasons hold commas).
+std::string quoted(const std::string& text) {
+  std::string q = "\"";
+  for (char c : text) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+}  // namespace
+
 std::string homographyCsvHeader() {
-  return "index,timestamp,status,inlier_ratio,h11,h12,h13,h21,h22,h23,h31,h32,h33,ms";
+  return "index,timestamp,status,inlier_ratio,h11,h12,h13,h21,h22,h23,h31,h32,h33,ms,reason";
 }
 
 std::string homographyCsvRow(const HomographyFrameRecord& r) {
@@ -23,8 +34,8 @@ std::string homographyCsvRow(const HomographyFrameRecord& r) {
     std::snprintf(buffer, sizeof buffer, ",%.10g", r.H.val[k]);
     row += buffer;
   }
-  std::snprintf(buffer, sizeof buffer, ",%.3f", r.milliseconds);
-  return row + buffer;
+  std::snprintf(buffer, sizeof buffer, ",%.3f,", r.milliseconds);
+  return row + buffer + quoted(r.tracked ? "" : r.reason);
 }
 
 void writeHomographyCsv(const std::filesystem::path& file,

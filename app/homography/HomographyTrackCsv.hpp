@@ -1,9 +1,11 @@
 #pragma once
 // HomographyTrackCsv: the per-frame record of a homography-mode run (`reftrack track --mode
 // homography --out-csv`) and its CSV form, one row per frame:
-//   index,timestamp,status,inlier_ratio,h11,h12,h13,h21,h22,h23,h31,h32,h33,ms
+//   index,timestamp,status,inlier_ratio,h11,h12,h13,h21,h22,h23,h31,h32,h33,ms,reason
 // timestamp is the frame's (seconds, the dataset's clock for tum:/euroc: inputs); status is
-// "tracked" or "lost"; H maps the reference to the frame (identity when lost).
+// "tracked" or "lost"; H maps the reference to the frame (identity when lost); reason (quoted,
+// inner quotes doubled: it holds commas) says why a lost frame was not registered, and is empty
+// for a tracked one.
 #include <filesystem>
 #include <opencv2/core.hpp>
 #include <string>
@@ -18,6 +20,7 @@ struct HomographyFrameRecord {
   double inlierRatio = 0.0;
   cv::Matx33d H = cv::Matx33d::eye();
   double milliseconds = 0.0;
+  std::string reason;  // why the frame is lost (HomographyTrackResult::failure); "" when tracked
 };
 
 std::string homographyCsvHeader();  // without the trailing newline

@@ -95,6 +95,7 @@ HomographyTrackSummary runHomographyTrack(const HomographyTrackOptions& o) {
     record.tracked = r.tracked;
     record.inlierRatio = r.inlierRatio;
     if (r.tracked) record.H = r.H;
+    if (!r.tracked) record.reason = r.failure;
     record.milliseconds = elapsed;
     records.push_back(record);
     ms.push_back(elapsed);

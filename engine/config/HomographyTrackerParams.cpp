@@ -41,6 +41,9 @@ void HomographyTrackerParams::check() const {
                        100.0);
   requireFiniteInRange("homography.keypoint_search_half_size_px", keypointSearchHalfSizePx, 0.5,
                        100.0);
+  if (refinePoints != 0) requireIntInRange("homography.refine_points", refinePoints, 8, 100000);
+  requireIntInRange("homography.keypoint_tilt_views", keypointTiltViews, 0, 16);
+  requireIntInRange("homography.keypoint_confident_inliers", keypointConfidentInliers, 4, 100000);
 }
 
 void HomographyTrackerParams::write(cv::FileStorage& fs) const {
@@ -53,7 +56,9 @@ void HomographyTrackerParams::write(cv::FileStorage& fs) const {
      << keypointLayerName(keypoints) << "keypoint_features" << keypointFeatures << "keypoint_ratio"
      << keypointRatio << "keypoint_detect_scale" << keypointDetectScale
      << "keypoint_inlier_threshold_px" << keypointInlierThresholdPx
-     << "keypoint_search_half_size_px" << keypointSearchHalfSizePx;
+     << "keypoint_search_half_size_px" << keypointSearchHalfSizePx << "refine_points"
+     << refinePoints << "keypoint_tilt_views" << keypointTiltViews << "keypoint_confident_inliers"
+     << keypointConfidentInliers;
 }
 
 void HomographyTrackerParams::read(const cv::FileNode& node) {
@@ -74,6 +79,9 @@ void HomographyTrackerParams::read(const cv::FileNode& node) {
   readConfigValue(node, s, "keypoint_detect_scale", keypointDetectScale);
   readConfigValue(node, s, "keypoint_inlier_threshold_px", keypointInlierThresholdPx);
   readConfigValue(node, s, "keypoint_search_half_size_px", keypointSearchHalfSizePx);
+  readConfigValue(node, s, "refine_points", refinePoints);
+  readConfigValue(node, s, "keypoint_tilt_views", keypointTiltViews);
+  readConfigValue(node, s, "keypoint_confident_inliers", keypointConfidentInliers);
   check();
 }
 

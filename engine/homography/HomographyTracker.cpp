@@ -142,6 +142,8 @@ HomographyTracker::HomographyTracker(const cv::Mat& reference, const TrackerPara
   reacquireRef_ = referenceSet(refGray_, reacquireDetector_, half);
   if (params_.homography.keypoints != KeypointLayer::None)
     keypointRegistrar_.emplace(refGray_, params_.homography, params_.ransac);
+  if (params_.homography.refinePoints > 0)
+    refiner_.emplace(refGray_, params_.homography.refinePoints);
 }
 
 void HomographyTracker::reset() {
@@ -357,6 +359,26 @@ void HomographyTracker::matchAndFit(Attempt& a, const cv::Mat& gray, const Refer
   stageMs[3] += lap(clock);
 }
 
+void HomographyTracker::refine(Attempt& a, const cv::Mat& gray, double stageMs[kStages]) const {
+  auto clock = std::chrono::steady_clock::now();
+  const RefinedHomography r = refiner_->refine(gray, a.est.H, params_.ransac.minInliers);
+  // Kept only where it agrees with the fit it started from: its transfer error on that fit's
+  // inliers within the inlier threshold (RMS), so a refinement that slid off cannot replace it.
+  if (r.success) {
+    const double threshold = params_.ransac.inlierThresholdPx * resolutionScale(gray.size());
+    double sq = 0;
+    int n = 0;
+    for (size_t i = 0; i < a.src.size(); ++i)
+      if (a.est.inliers[i]) {
+        const double e = transferError(r.H, a.src[i], a.dst[i]);
+        sq += e * e;
+        ++n;
+      }
+    if (n > 0 && std::sqrt(sq / n) <= threshold) a.est.H = r.H;
+  }
+  stageMs[5] += lap(clock);
+}
+
 HomographyTracker::Attempt HomographyTracker::coldAttempt(const cv::Mat& gray,
                                                           double stageMs[kStages],
                                                           bool& keypointGuided) {
@@ -372,10 +394,20 @@ HomographyTracker::Attempt HomographyTracker::coldAttempt(const cv::Mat& gray,
       const int radius =
           std::max(2, static_cast<int>(std::lround(params_.homography.keypointSearchHalfSizePx *
                                                    resolutionScale(gray.size()))));
-      Attempt a = attempt(gray, frameDetector_, ref_, k.H, false, stageMs, false, radius);
+      // The keypoint homography (1-3 px off at the frame corners) is first refined by the
+      // refiner's alignment, which warps the reference exactly (the windows' affine warp is
+      // only exact at their centres: at 45-50 degrees of tilt the guided windows then miss).
+      cv::Matx33d guide = k.H;
+      if (refiner_) {
+        auto refineClock = std::chrono::steady_clock::now();
+        const RefinedHomography r = refiner_->refine(gray, k.H, params_.ransac.minInliers);
+        if (r.success) guide = r.H;
+        stageMs[5] += lap(refineClock);
+      }
+      Attempt a = attempt(gray, frameDetector_, ref_, guide, false, stageMs, false, radius);
       if (!a.tracked) {
         Attempt dense =
-            attempt(gray, reacquireDetector_, reacquireRef_, k.H, false, stageMs, false, radius);
+            attempt(gray, reacquireDetector_, reacquireRef_, guide, false, stageMs, false, radius);
         if (dense.tracked) a = std::move(dense);
       }
       if (a.tracked) {
@@ -399,7 +431,7 @@ HomographyTrackResult HomographyTracker::track(const cv::Mat& frame) {
     throw Error("homography tracker: frame is " + std::to_string(gray.cols) + "x" +
                 std::to_string(gray.rows) + " but the reference is " +
                 std::to_string(refGray_.cols) + "x" + std::to_string(refGray_.rows));
-  double stageMs[kStages] = {0, 0, 0, 0, 0};
+  double stageMs[kStages] = {0, 0, 0, 0, 0, 0};
   bool keypointGuided = false;
   // While tracking (or coasting after a loss): the reference's corners matched around their
   // predicted positions in the denser frame set. Unguided, with the denser re-acquisition sets
@@ -418,16 +450,26 @@ HomographyTrackResult HomographyTracker::track(const cv::Mat& frame) {
     if (dense.tracked) a = std::move(dense);
   }
   std::optional<cv::Matx33d> coastNext;
+  std::string guidedFailure;  // why the guided attempt (if any) failed
+  bool cold = false;          // a cold attempt followed it
   if (!a.tracked) {
     coastNext = a.prediction;
+    if (a.prediction)
+      guidedFailure =
+          (coasting ? "coasted prediction: " : "guided by the previous frame: ") + a.failure;
+    else if (base)
+      guidedFailure = "coasting ended: no frame-to-frame homography";
     if (!base || coasting) {
       // The guided attempt's frame corners seed the next frame-to-frame homography only if the
       // unguided attempt does not replace them.
       prevPoints_ = std::move(a.points);
       prevPatches_ = std::move(a.patches);
       a = coldAttempt(gray, stageMs, keypointGuided);
+      cold = true;
     }
   }
+
+  if (a.tracked && refiner_ && !a.rotationModel) refine(a, gray, stageMs);
 
   HomographyTrackResult out;
   out.tracked = a.tracked;
@@ -438,12 +480,24 @@ HomographyTrackResult HomographyTracker::track(const cv::Mat& frame) {
   out.matches = a.matches;
   out.inliers = a.est.inlierCount;
   out.inlierRatio = a.inlierRatio;
-  out.failure = a.failure;
+  // Why a lost frame is lost (every one gets a reason): too few corners first (black,
+  // textureless or blurred), else the attempts made, in order.
+  if (!a.tracked) {
+    const int needed = std::max(4, params_.ransac.minInliers);
+    if (static_cast<int>(a.points.size()) < needed)
+      out.failure = "too few corners (" + std::to_string(a.points.size()) +
+                    "): textureless, black or blurred frame";
+    else if (cold)
+      out.failure = (guidedFailure.empty() ? "" : guidedFailure + "; ") + "cold: " + a.failure;
+    else
+      out.failure = guidedFailure;
+  }
   if (a.est.success) out.H = a.est.H;
   for (size_t i = 0; i < a.src.size(); ++i)
     if (a.est.inliers[i]) out.inlierMatches.emplace_back(a.src[i], a.dst[i]);
   out.frameCorners = a.points;
-  const char* names[kStages] = {"corners", "prediction", "matching", "robust fit", "keypoints"};
+  const char* names[kStages] = {"corners",    "prediction", "matching",
+                                "robust fit", "keypoints",  "refine"};
   for (int i = 0; i < kStages; ++i) out.stageMs.emplace_back(names[i], stageMs[i]);
   prevPoints_ = std::move(a.points);
   prevPatches_ = std::move(a.patches);

@@ -15,7 +15,8 @@
 // failing that, unguided (square windows, whole image, a denser corner set on both sides, RANSAC
 // drawing from the best correlation scores first; a hypothesis short of the inlier rules is
 // re-matched around its own prediction), so tracking re-acquires on its own when the view
-// returns.
+// returns. Every registered H is finally refined (HomographyRefiner, homography.refine_points),
+// so a frame gets the same H whether it was tracked or registered cold.
 // Given the camera's K, a frame the general homography fails on — or fits on a thin strip only —
 // is solved with the rotation-only model H = K R K^-1 (homography.rotation_model), which a
 // sliver of overlap still determines.
@@ -29,6 +30,7 @@
 #include "engine/config/TrackerParams.hpp"
 #include "engine/features/Corner.hpp"
 #include "engine/features/CornerDetector.hpp"
+#include "engine/homography/HomographyRefiner.hpp"
 #include "engine/homography/KeypointHomographyRegistrar.hpp"
 #include "engine/homography/RobustHomographyEstimator.hpp"
 #include "engine/homography/RotationHomographyEstimator.hpp"
@@ -53,7 +55,8 @@ struct HomographyTrackResult {
   std::vector<cv::Point2f> frameCorners;  // corner positions detected in this frame
   // Inlier correspondences (reference position, frame position) of the final H.
   std::vector<std::pair<cv::Point2f, cv::Point2f>> inlierMatches;
-  // Milliseconds per stage, in order: corners, prediction, matching, robust fit, keypoints.
+  // Milliseconds per stage, in order: corners, prediction, matching, robust fit, keypoints,
+  // refine.
   std::vector<std::pair<std::string, double>> stageMs;
 };
 
@@ -81,7 +84,8 @@ class HomographyTracker {
                                      const std::vector<cv::Point2f>& points,
                                      const NccPatches& patches) const;
 
-  static constexpr int kStages = 5;  // corners, prediction, matching, robust fit, keypoints
+  // corners, prediction, matching, robust fit, keypoints, refine
+  static constexpr int kStages = 6;
 
   // One corner set of the reference with its windows (tracking or re-acquisition density).
   struct ReferenceSet {
@@ -121,6 +125,9 @@ class HomographyTracker {
   void matchAndFit(Attempt& a, const cv::Mat& gray, const ReferenceSet& ref,
                    const std::optional<cv::Matx33d>& guide, double guidedHalf,
                    double stageMs[kStages], int denseRadius = 0) const;
+  // The registered attempt's H refined by refiner_ (kept when it still fits the attempt's
+  // inliers); stageMs[5] accumulates.
+  void refine(Attempt& a, const cv::Mat& gray, double stageMs[kStages]) const;
   // Registration without a prediction: around the keypoint layer's homography, then unguided.
   Attempt coldAttempt(const cv::Mat& gray, double stageMs[kStages], bool& keypointGuided);
 
@@ -132,6 +139,7 @@ class HomographyTracker {
   RobustHomographyEstimator estimator_;
   std::optional<RotationHomographyEstimator> rotationEstimator_;  // with K and rotation_model
   std::optional<KeypointHomographyRegistrar> keypointRegistrar_;  // unless keypoints is none
+  std::optional<HomographyRefiner> refiner_;                      // unless refine_points is 0
   cv::Mat refGray_;
   ReferenceSet ref_, reacquireRef_;
   // The previous frame (for the frame-to-frame homography) and its registration.

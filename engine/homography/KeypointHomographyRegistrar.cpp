@@ -41,6 +41,33 @@ cv::Ptr<cv::Feature2D> makeDetector(const HomographyTrackerParams& p) {
 constexpr int kRansacIterations = 5000;
 constexpr double kRansacConfidence = 0.995;
 
+// The synthetic tilted views' out-of-plane angle (ASIFT samples tilts sqrt(2) and 2, i.e. 45 and
+// 60 degrees; one tilt between them covers the 40-55 degree views plain ORB misses).
+constexpr double kTiltDeg = 50.0;
+constexpr double kPi = 3.14159265358979323846;
+
+// The affine map of the reference into a view tilted by kTiltDeg across direction `angle`
+// (radians): rotate by -angle, compress x by cos(tilt), rotate back, then shift into a canvas
+// holding the whole image (its size in `canvas`).
+cv::Matx23d tiltMap(cv::Size size, double angle, cv::Size& canvas) {
+  const double c = std::cos(angle), s = std::sin(angle), t = std::cos(kTiltDeg * kPi / 180.0);
+  const cv::Matx22d R(c, -s, s, c);
+  const cv::Matx22d A = R * cv::Matx22d(t, 0, 0, 1) * R.t();
+  double minX = 1e30, minY = 1e30, maxX = -1e30, maxY = -1e30;
+  for (const cv::Vec2d& p :
+       {cv::Vec2d(0, 0), cv::Vec2d(size.width - 1, 0), cv::Vec2d(0, size.height - 1),
+        cv::Vec2d(size.width - 1, size.height - 1)}) {
+    const cv::Vec2d q = A * p;
+    minX = std::min(minX, q[0]);
+    minY = std::min(minY, q[1]);
+    maxX = std::max(maxX, q[0]);
+    maxY = std::max(maxY, q[1]);
+  }
+  canvas = cv::Size(static_cast<int>(std::ceil(maxX - minX)) + 1,
+                    static_cast<int>(std::ceil(maxY - minY)) + 1);
+  return cv::Matx23d(A(0, 0), A(0, 1), -minX, A(1, 0), A(1, 1), -minY);
+}
+
 }  // namespace
 
 KeypointHomographyRegistrar::KeypointHomographyRegistrar(const cv::Mat& reference,
@@ -49,12 +76,49 @@ KeypointHomographyRegistrar::KeypointHomographyRegistrar(const cv::Mat& referenc
     : params_(checked(params, ransac)), ransac_(ransac), detector_(makeDetector(params_)) {
   if (reference.empty()) throw Error("keypoint registrar: the reference image is empty");
   norm_ = params_.keypoints == KeypointLayer::Sift ? cv::NORM_L2 : cv::NORM_HAMMING;
-  detect(toGray8(reference), 1.0, refKeypoints_, refDescriptors_);
-  if (static_cast<int>(refKeypoints_.size()) < ransac_.minInliers)
-    throw Error("keypoint registrar: only " + std::to_string(refKeypoints_.size()) + " " +
+  const cv::Mat gray = toGray8(reference);
+  views_.emplace_back();
+  detect(gray, 1.0, views_[0].keypoints, views_[0].descriptors);
+  if (static_cast<int>(views_[0].keypoints.size()) < ransac_.minInliers)
+    throw Error("keypoint registrar: only " + std::to_string(views_[0].keypoints.size()) + " " +
                 keypointLayerName(params_.keypoints) +
                 " keypoints in the reference image (at least " +
                 std::to_string(ransac_.minInliers) + " needed)");
+  // Synthetic tilted views (ASIFT-like): each blurred and warped, searched for keypoints, the
+  // positions mapped back into the reference.
+  for (int v = 0; v < params_.keypointTiltViews; ++v) {
+    cv::Size canvas;
+    const cv::Matx23d A = tiltMap(gray.size(), kPi * v / params_.keypointTiltViews, canvas);
+    cv::Mat tilted;
+    // Anti-aliased compression (ASIFT: a Gaussian of SD 0.8 sqrt(t^2 - 1), t = 1 / cos(tilt),
+    // across the compressed direction; isotropic here, which also softens the other direction
+    // slightly and keeps it to one OpenCV call).
+    cv::Mat blurred;
+    const double t = 1.0 / std::cos(kTiltDeg * kPi / 180.0);
+    const double sigma = 0.8 * std::sqrt(t * t - 1.0);
+    cv::GaussianBlur(gray, blurred, cv::Size(), sigma);
+    cv::warpAffine(blurred, tilted, A, canvas, cv::INTER_LINEAR, cv::BORDER_CONSTANT,
+                   cv::Scalar(0));
+    View view;
+    detect(tilted, 1.0, view.keypoints, view.descriptors);
+    cv::Matx23d back;
+    cv::invertAffineTransform(A, back);
+    std::vector<cv::KeyPoint> kept;
+    cv::Mat keptDescriptors;
+    for (size_t i = 0; i < view.keypoints.size(); ++i) {
+      cv::KeyPoint k = view.keypoints[i];
+      const cv::Vec3d p(k.pt.x, k.pt.y, 1.0);
+      const cv::Vec2d q = back * p;
+      if (q[0] < 0 || q[1] < 0 || q[0] > gray.cols - 1 || q[1] > gray.rows - 1) continue;
+      k.pt = cv::Point2f(static_cast<float>(q[0]), static_cast<float>(q[1]));
+      kept.push_back(k);
+      keptDescriptors.push_back(view.descriptors.row(static_cast<int>(i)));
+    }
+    view.keypoints = std::move(kept);
+    view.descriptors = keptDescriptors;
+    if (static_cast<int>(view.keypoints.size()) >= ransac_.minInliers)
+      views_.push_back(std::move(view));
+  }
 }
 
 void KeypointHomographyRegistrar::detect(const cv::Mat& gray, double scale,
@@ -76,12 +140,26 @@ void KeypointHomographyRegistrar::detect(const cv::Mat& gray, double scale,
 KeypointRegistration KeypointHomographyRegistrar::registerFrame(const cv::Mat& frame) const {
   if (frame.empty()) throw Error("keypoint registrar: the frame is empty");
   const cv::Mat gray = toGray8(frame);
-  KeypointRegistration out;
   std::vector<cv::KeyPoint> keypoints;
   cv::Mat descriptors;
   detect(gray, params_.keypointDetectScale, keypoints, descriptors);
+  // The plain reference first; the tilted views only when it gives no confident homography,
+  // then the found homography with the most inliers (or the plain view's failure).
+  KeypointRegistration best = registerToView(views_.front(), gray, keypoints, descriptors);
+  for (size_t v = 1; v < views_.size(); ++v) {
+    if (best.found && best.inliers >= params_.keypointConfidentInliers) break;
+    KeypointRegistration r = registerToView(views_[v], gray, keypoints, descriptors);
+    if (r.found && (!best.found || r.inliers > best.inliers)) best = std::move(r);
+  }
+  return best;
+}
+
+KeypointRegistration KeypointHomographyRegistrar::registerToView(
+    const View& view, const cv::Mat& gray, const std::vector<cv::KeyPoint>& keypoints,
+    const cv::Mat& descriptors) const {
+  KeypointRegistration out;
   out.frameKeypoints = static_cast<int>(keypoints.size());
-  if (static_cast<int>(keypoints.size()) < ransac_.minInliers || refDescriptors_.empty()) {
+  if (static_cast<int>(keypoints.size()) < ransac_.minInliers || view.descriptors.empty()) {
     out.failure = "only " + std::to_string(keypoints.size()) + " keypoints in the frame";
     return out;
   }
@@ -89,7 +167,7 @@ KeypointRegistration KeypointHomographyRegistrar::registerFrame(const cv::Mat& f
   // keypoints of each frame keypoint (ratio test) and the nearest frame keypoint of each
   // reference keypoint (mutual check).
   cv::Mat distance;  // Hamming distances come as CV_32S (the only type OpenCV gives them in)
-  cv::batchDistance(descriptors, refDescriptors_, distance,
+  cv::batchDistance(descriptors, view.descriptors, distance,
                     norm_ == cv::NORM_HAMMING ? CV_32S : CV_32F, cv::noArray(), norm_);
   if (distance.type() != CV_32F) distance.convertTo(distance, CV_32F);
   const int rows = distance.rows, cols = distance.cols;
@@ -120,7 +198,7 @@ KeypointRegistration KeypointHomographyRegistrar::registerFrame(const cv::Mat& f
   for (int r = 0; r < rows; ++r) {
     const int c = rowArg[static_cast<size_t>(r)];
     if (c < 0 || columnArg[static_cast<size_t>(c)] != r) continue;
-    src.push_back(refKeypoints_[static_cast<size_t>(c)].pt);
+    src.push_back(view.keypoints[static_cast<size_t>(c)].pt);
     dst.push_back(keypoints[static_cast<size_t>(r)].pt);
   }
   out.matches = static_cast<int>(src.size());

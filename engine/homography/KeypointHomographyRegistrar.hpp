@@ -34,9 +34,23 @@ class KeypointHomographyRegistrar {
   // reftrack::Error on an empty frame.
   KeypointRegistration registerFrame(const cv::Mat& frame) const;
 
-  int referenceKeypoints() const { return static_cast<int>(refKeypoints_.size()); }
+  int referenceKeypoints() const { return static_cast<int>(views_.front().keypoints.size()); }
+  int views() const {
+    return static_cast<int>(views_.size());
+  }  // 1 + homography.keypoint_tilt_views
 
  private:
+  // The reference's keypoints (positions in the reference's pixels) and descriptors, detected
+  // on the reference itself (views_[0]) or on a synthetic tilted view of it.
+  struct View {
+    std::vector<cv::KeyPoint> keypoints;
+    cv::Mat descriptors;
+  };
+  // Descriptor matching of the frame's keypoints to one view and its RANSAC homography.
+  KeypointRegistration registerToView(const View& view, const cv::Mat& gray,
+                                      const std::vector<cv::KeyPoint>& keypoints,
+                                      const cv::Mat& descriptors) const;
+
   // Keypoints and descriptors of `gray`, detected at `scale` of its size (positions given in
   // `gray`'s pixels), the `features` strongest.
   void detect(const cv::Mat& gray, double scale, std::vector<cv::KeyPoint>& keypoints,
@@ -46,8 +60,7 @@ class KeypointHomographyRegistrar {
   RansacParams ransac_;
   cv::Ptr<cv::Feature2D> detector_;
   int norm_ = cv::NORM_L2;
-  std::vector<cv::KeyPoint> refKeypoints_;
-  cv::Mat refDescriptors_;
+  std::vector<View> views_;
 };
 
 }  // namespace reftrack

@@ -33,8 +33,11 @@ std::vector<int> inliersOf(const cv::Matx33d& H, const std::vector<cv::Point2f>&
 }  // namespace
 
 cv::Matx33d refineHomography(const cv::Matx33d& H, const std::vector<cv::Point2f>& src,
-                             const std::vector<cv::Point2f>& dst, const std::vector<int>& indices) {
+                             const std::vector<cv::Point2f>& dst, const std::vector<int>& indices,
+                             const std::vector<double>& weights) {
   if (indices.size() < 5) return H;
+  if (!weights.empty() && weights.size() != indices.size())
+    throw Error("refine homography: one weight per index is required");
   const cv::Matx33d T1 = normalisingTransform(src, indices);
   const cv::Matx33d T2 = normalisingTransform(dst, indices);
   cv::Matx33d Hn = T2 * H * T1.inv();
@@ -44,23 +47,27 @@ cv::Matx33d refineHomography(const cv::Matx33d& H, const std::vector<cv::Point2f
   // transfer residual; an 8x8 normal-equation solve per step (the problem is tiny: a general
   // solver's setup cost would dominate).
   std::vector<Eigen::Vector4d> pts;  // normalised (x, y, u, v)
+  std::vector<double> w(indices.size(), 1.0);
   pts.reserve(indices.size());
-  for (int i : indices) {
-    const auto& a = src[static_cast<size_t>(i)];
-    const auto& b = dst[static_cast<size_t>(i)];
+  for (size_t k = 0; k < indices.size(); ++k) {
+    const auto& a = src[static_cast<size_t>(indices[k])];
+    const auto& b = dst[static_cast<size_t>(indices[k])];
     pts.emplace_back(T1(0, 0) * a.x + T1(0, 2), T1(1, 1) * a.y + T1(1, 2),
                      T2(0, 0) * b.x + T2(0, 2), T2(1, 1) * b.y + T2(1, 2));
+    if (!weights.empty()) w[k] = weights[k];
   }
   using Vec8 = Eigen::Matrix<double, 8, 1>;
   using Mat8 = Eigen::Matrix<double, 8, 8>;
   Vec8 h;
   h << Hn(0, 0), Hn(0, 1), Hn(0, 2), Hn(1, 0), Hn(1, 1), Hn(1, 2), Hn(2, 0), Hn(2, 1);
   // Sum of squared residuals; with JtJ/Jtr when asked.
-  const auto evaluate = [&pts](const Vec8& p, Mat8* JtJ, Vec8* Jtr) {
+  const auto evaluate = [&pts, &w](const Vec8& p, Mat8* JtJ, Vec8* Jtr) {
     double cost = 0;
     if (JtJ) JtJ->setZero();
     if (Jtr) Jtr->setZero();
-    for (const Eigen::Vector4d& q : pts) {
+    for (size_t k = 0; k < pts.size(); ++k) {
+      const Eigen::Vector4d& q = pts[k];
+      const double wk = w[k];
       const double x = q(0), y = q(1);
       const double w = p(6) * x + p(7) * y + 1.0;
       if (!(std::abs(w) > 1e-12)) return std::numeric_limits<double>::infinity();
@@ -68,14 +75,14 @@ cv::Matx33d refineHomography(const cv::Matx33d& H, const std::vector<cv::Point2f
       const double px = (p(0) * x + p(1) * y + p(2)) * iw;
       const double py = (p(3) * x + p(4) * y + p(5)) * iw;
       const double rx = px - q(2), ry = py - q(3);
-      cost += rx * rx + ry * ry;
+      cost += wk * (rx * rx + ry * ry);
       if (!JtJ) continue;
       Vec8 jx, jy;
       jx << x * iw, y * iw, iw, 0, 0, 0, -px * x * iw, -px * y * iw;
       jy << 0, 0, 0, x * iw, y * iw, iw, -py * x * iw, -py * y * iw;
-      JtJ->selfadjointView<Eigen::Lower>().rankUpdate(jx);
-      JtJ->selfadjointView<Eigen::Lower>().rankUpdate(jy);
-      *Jtr += jx * rx + jy * ry;
+      JtJ->selfadjointView<Eigen::Lower>().rankUpdate(jx, wk);
+      JtJ->selfadjointView<Eigen::Lower>().rankUpdate(jy, wk);
+      *Jtr += wk * (jx * rx + jy * ry);
     }
     return cost;
   };

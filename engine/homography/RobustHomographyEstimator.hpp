@@ -52,10 +52,11 @@ void summariseEstimate(HomographyEstimate& out, const cv::Matx33d& H,
                        const std::vector<int>& inliers, const std::vector<cv::Point2f>& src,
                        const std::vector<cv::Point2f>& dst, const RansacParams& params);
 
-// Minimises sum |H src_i - dst_i|^2 over the 8 free entries of H (Levenberg-Marquardt with the
-// analytic Jacobian, in normalised coordinates); returns the refined H (h33 = 1), or H unchanged
-// when the solve fails.
+// Minimises sum w_i |H src_i - dst_i|^2 over the 8 free entries of H (Levenberg-Marquardt with
+// the analytic Jacobian, in normalised coordinates) for i in indices; weights: one per index
+// (all 1 when empty). Returns the refined H (h33 = 1), or H unchanged when the solve fails.
 cv::Matx33d refineHomography(const cv::Matx33d& H, const std::vector<cv::Point2f>& src,
-                             const std::vector<cv::Point2f>& dst, const std::vector<int>& indices);
+                             const std::vector<cv::Point2f>& dst, const std::vector<int>& indices,
+                             const std::vector<double>& weights = {});
 
 }  // namespace reftrack

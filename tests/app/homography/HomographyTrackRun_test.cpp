@@ -61,6 +61,36 @@ TEST(HomographyTrackRun, WritesOneCsvRowPerFrameAndARecording) {
   EXPECT_EQ(runHomographyTrack(o).frames, 3);
 }
 
+TEST(HomographyTrackRun, LostFramesCarryTheirReasonInTheCsv) {
+  // Frame 3 black: lost, with the reason; the others tracked, with an empty reason (frame 4 is
+  // registered cold again).
+  const auto dir = writeStaticSequence("HomographyTrackRun_reason");
+  cv::imwrite((dir / "frames" / "000003.png").string(), cv::Mat(240, 320, CV_8UC3, cv::Scalar(0)));
+  HomographyTrackOptions o;
+  o.reference = dir / "reference.png";
+  o.input = (dir / "frames").string();
+  o.csv = dir / "track.csv";
+  const HomographyTrackSummary s = runHomographyTrack(o);
+  EXPECT_EQ(s.tracked, 7);
+  std::ifstream in(o.csv);
+  std::vector<std::string> lines;
+  for (std::string l; std::getline(in, l);) lines.push_back(l);
+  ASSERT_EQ(lines.size(), 9u);
+  EXPECT_EQ(lines[0].substr(lines[0].size() - 7), ",reason");
+  for (size_t k = 1; k < lines.size(); ++k) {
+    if (k == 4) {
+      EXPECT_EQ(lines[k].substr(0, 2), "3,") << lines[k];
+      EXPECT_NE(lines[k].find(",lost,"), std::string::npos) << lines[k];
+      EXPECT_NE(lines[k].find(",\"too few corners (0): textureless, black or blurred frame\""),
+                std::string::npos)
+          << lines[k];
+    } else {
+      EXPECT_NE(lines[k].find(",tracked,"), std::string::npos) << lines[k];
+      EXPECT_EQ(lines[k].substr(lines[k].size() - 3), ",\"\"") << lines[k];
+    }
+  }
+}
+
 TEST(HomographyTrackRun, BadInputThrowsAndWritesNothing) {
   const auto dir = writeStaticSequence("HomographyTrackRun_bad");
   HomographyTrackOptions o;

@@ -74,7 +74,8 @@ TEST_F(HomographyFrameTrackerTest, ResultCarriesInverseHRotationPoseAndMappedLab
     EXPECT_LT(std::hypot(q.x - t.x, q.y - t.y), 0.5) << k;  // the < 0.5 px annotation target
     EXPECT_EQ(r.debug.corners.size(), tracker.last().frameCorners.size());
     EXPECT_EQ(static_cast<int>(r.debug.matches.size()), r.inliers);
-    EXPECT_EQ(r.stages.size(), 5u);  // corners, prediction, matching, robust fit, keypoints
+    // corners, prediction, matching, robust fit, keypoints, refine
+    EXPECT_EQ(r.stages.size(), 6u);
   }
 }
 

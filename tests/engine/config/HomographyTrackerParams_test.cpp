@@ -24,6 +24,9 @@ TEST(HomographyTrackerParams, RoundTrip) {
   in.keypointRatio = 0.7;
   in.keypointDetectScale = 0.5;
   in.keypointInlierThresholdPx = 2.5;
+  in.refinePoints = 0;
+  in.keypointTiltViews = 2;
+  in.keypointConfidentInliers = 30;
   HomographyTrackerParams out;
   roundTrip(in, out);
   EXPECT_DOUBLE_EQ(out.guidedSearchHalfSizePx, 4.5);
@@ -39,6 +42,9 @@ TEST(HomographyTrackerParams, RoundTrip) {
   EXPECT_DOUBLE_EQ(out.keypointRatio, 0.7);
   EXPECT_DOUBLE_EQ(out.keypointDetectScale, 0.5);
   EXPECT_DOUBLE_EQ(out.keypointInlierThresholdPx, 2.5);
+  EXPECT_EQ(out.refinePoints, 0);
+  EXPECT_EQ(out.keypointTiltViews, 2);
+  EXPECT_EQ(out.keypointConfidentInliers, 30);
 }
 
 TEST(HomographyTrackerParams, KeypointLayerNames) {
@@ -70,6 +76,13 @@ TEST(HomographyTrackerParams, BadFieldIsNamed) {
   EXPECT_NE(errorMessage([&] { p.check(); }).find("homography.reacquire_corner_quality"),
             std::string::npos);
   p.reacquireCornerQuality = 1e-4;
+  p.refinePoints = 3;
+  EXPECT_NE(errorMessage([&] { p.check(); }).find("homography.refine_points"), std::string::npos);
+  p.refinePoints = 150;
+  p.keypointTiltViews = -1;
+  EXPECT_NE(errorMessage([&] { p.check(); }).find("homography.keypoint_tilt_views"),
+            std::string::npos);
+  p.keypointTiltViews = 4;
   p.reacquireMinDistancePx = std::numeric_limits<double>::infinity();
   EXPECT_NE(errorMessage([&] { p.check(); }).find("homography.reacquire_min_distance_px"),
             std::string::npos);

@@ -219,11 +219,13 @@ TEST(HomographyTracker, RegistersAFarViewColdThroughTheKeypointLayer) {
 }
 
 // Every frame of ViSP's hand-held planar clips registered cold (reset before each, frames in a
-// shuffled order), compared with tracking the clip in order. Both are correlation fits to the
-// same frame, guided by different predictions and so resting on partly different matches; they
-// are compared where they have support — at the reference points either fit has as inliers.
-// At the frame corners, far outside the card the matches cover, the two extrapolate apart (up to
-// 16 px on the postcard clip, measured): neither is known to 1 px there (no ground truth).
+// shuffled order) gets the same homography as when the clip is tracked in order, to 1 px at the
+// frame corners (issue 13's target). The two registrations rest on different matches (corner
+// to corner while tracking, warped windows around the keypoint homography when cold); with few
+// of them on a small card, their extrapolations to the frame corners differed by up to 16 px
+// (measured). Both now end in HomographyRefiner, which aligns the reference warped by H at
+// many textured points and re-fits H with Cauchy weights until it stops moving, so the result
+// no longer depends on the start (measured: worst 0.37 px on the postcard, 0.02 px on bruegel).
 TEST(HomographyTracker, RegistersEveryFrameOfThePlanarClipsColdInShuffledOrder) {
   const auto data = test::sharedDataDir();
   for (const std::string clip : {"video-postcard.mp4", "bruegel.mp4"}) {
@@ -246,43 +248,23 @@ TEST(HomographyTracker, RegistersEveryFrameOfThePlanarClipsColdInShuffledOrder) 
     cv::RNG rng(17);
     for (size_t i = order.size() - 1; i > 0; --i)
       std::swap(order[i], order[static_cast<size_t>(rng.uniform(0, static_cast<int>(i) + 1))]);
-    std::vector<double> supportError;
-    double worstCorner = 0;
+    std::vector<double> cornerError;
     for (size_t k : order) {
       tracker.reset();
       const auto r = tracker.track(frames[k]);
       ASSERT_TRUE(r.tracked) << clip << " cold, frame " << k << ": " << r.failure;
       EXPECT_FALSE(r.guided);
       EXPECT_TRUE(r.keypointGuided) << clip << " frame " << k;
-      double worst = 0;
-      for (const HomographyTrackResult* fit :
-           {static_cast<const HomographyTrackResult*>(&inOrder[k]), &r})
-        for (const auto& [ref, cur] : fit->inlierMatches) {
-          const cv::Point2d p(ref.x, ref.y);
-          worst = std::max(worst, cv::norm(transferPoint(r.H, p) - transferPoint(inOrder[k].H, p)));
-        }
-      supportError.push_back(worst);
-      worstCorner = std::max(worstCorner, test::cornerError(r.H, inOrder[k].H, frames[k].size()));
+      cornerError.push_back(test::cornerError(r.H, inOrder[k].H, frames[k].size()));
+      // 1 px: the target; the refinement's two results differ by its convergence tolerance
+      // (0.01 px per round) plus the few matches that differ near the search boundary.
+      EXPECT_LE(cornerError.back(), 1.0) << clip << " frame " << k;
     }
-    std::vector<double> sorted = supportError;
-    std::sort(sorted.begin(), sorted.end());
-    const double median = sorted[sorted.size() / 2], worst = sorted.back();
+    std::sort(cornerError.begin(), cornerError.end());
     std::printf(
-        "%s: %zu frames registered cold; cold vs in order on the support: median %.2f px, "
-        "worst %.2f px; at the frame corners worst %.2f px\n",
-        clip.c_str(), frames.size(), median, worst, worstCorner);
-    if (clip == "video-postcard.mp4") {
-      // A card lying flat on a table: one plane. Measured worst 1.80 px (frame 130), median
-      // well under a pixel.
-      EXPECT_LT(worst, 2.5) << clip;
-      EXPECT_LT(median, 1.0) << clip;
-    } else {
-      // A print standing on a desk: the desk and the wall behind it are other planes, so the
-      // two fits may rest on different surfaces near the print's border (measured worst 5.6 px,
-      // frame 55); most frames still agree to about a pixel.
-      EXPECT_LT(median, 1.5) << clip;
-      EXPECT_LT(worst, 8.0) << clip;
-    }
+        "%s: %zu frames registered cold; cold vs in order at the frame corners: median "
+        "%.2f px, worst %.2f px\n",
+        clip.c_str(), frames.size(), cornerError[cornerError.size() / 2], cornerError.back());
   }
 }
 
@@ -355,9 +337,10 @@ TEST(HomographyTracker, ReportsDebugLayersAndStageTimes) {
     const cv::Point2d q = transferPoint(truth, cv::Point2d(ref.x, ref.y));
     EXPECT_LT(std::hypot(q.x - cur.x, q.y - cur.y), 1.8);
   }
-  ASSERT_EQ(r.stageMs.size(), 5u);
+  ASSERT_EQ(r.stageMs.size(), 6u);
   EXPECT_EQ(r.stageMs[0].first, "corners");
   EXPECT_EQ(r.stageMs[3].first, "robust fit");
   EXPECT_EQ(r.stageMs[4].first, "keypoints");  // the cold registration's keypoint layer
+  EXPECT_EQ(r.stageMs[5].first, "refine");
   for (const auto& [name, ms] : r.stageMs) EXPECT_GE(ms, 0.0) << name;
 }

@@ -71,6 +71,35 @@ TEST(RobustHomographyEstimator, RefinementDoesNotWorsenTheFit) {
   EXPECT_LE(b.rmsTransferError, a.rmsTransferError + 1e-9);
 }
 
+TEST(RobustHomographyEstimator, WeightedRefinementIgnoresAZeroWeightMatch) {
+  // Exact matches of kTruth plus one gross outlier: with weight 0 on the outlier the refinement
+  // lands on kTruth (to rounding); with unit weights the outlier pulls it away.
+  std::vector<cv::Point2f> src, dst;
+  for (int i = 0; i < 30; ++i) {
+    const cv::Point2f p(static_cast<float>(10 + (i * 37) % 300),
+                        static_cast<float>(8 + (i * 53) % 220));
+    const cv::Point2d q = transferPoint(kTruth, p);
+    src.push_back(p);
+    dst.emplace_back(static_cast<float>(q.x), static_cast<float>(q.y));
+  }
+  dst.back() += cv::Point2f(25, -15);
+  std::vector<int> all(src.size());
+  for (size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
+  std::vector<double> weights(src.size(), 1.0);
+  weights.back() = 0.0;
+  const cv::Matx33d start = kTruth * cv::Matx33d(1.01, 0, 1, 0, 0.99, -1, 0, 0, 1);
+  const cv::Matx33d weighted = refineHomography(start, src, dst, all, weights);
+  const cv::Matx33d plain = refineHomography(start, src, dst, all);
+  double worstWeighted = 0, worstPlain = 0;
+  for (size_t i = 0; i + 1 < src.size(); ++i) {
+    worstWeighted = std::max(worstWeighted, transferError(weighted, src[i], dst[i]));
+    worstPlain = std::max(worstPlain, transferError(plain, src[i], dst[i]));
+  }
+  EXPECT_LT(worstWeighted, 1e-3);  // float positions: ~1e-5 px rounding
+  EXPECT_GT(worstPlain, 0.1);
+  EXPECT_THROW(refineHomography(start, src, dst, all, {1.0, 2.0}), Error);
+}
+
 TEST(RobustHomographyEstimator, FailsBelowMinimumInlierRatio) {
   std::vector<cv::Point2f> src, dst;
   std::vector<char> truthInlier;
