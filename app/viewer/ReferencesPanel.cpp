@@ -15,6 +15,8 @@ void ReferencesState::addFrame(const ReferencesFrame& frame) {
   ++attempts;
   if (frame.relocalisationSucceeded) ++successes;
   attemptMs.push_back(frame.relocalisationMs);
+  // The panel shows recent attempts: a bounded history keeps a long session's memory flat.
+  if (attemptMs.size() > 1000) attemptMs.erase(attemptMs.begin(), attemptMs.begin() + 500);
   lastMessage = frame.relocalisationMessage;
 }
 

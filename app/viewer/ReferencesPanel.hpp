@@ -17,7 +17,7 @@ struct ReferencesState {
   cv::Size thumbnailSize{0, 0};
   int referenceA = -1, referenceB = -1;  // the pair in use on the last frame
   int attempts = 0, successes = 0;       // relocalisation, since the start
-  std::vector<double> attemptMs;         // every attempt's time
+  std::vector<double> attemptMs;         // recent attempts' times (the last 500-1000)
   std::string lastMessage;               // the last attempt's result
   void addFrame(const ReferencesFrame& frame);
   double lastMs() const;    // NaN before the first attempt

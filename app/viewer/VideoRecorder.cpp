@@ -34,13 +34,29 @@ VideoRecorder::VideoRecorder(const fs::path& mp4, double fps, cv::Size frameSize
     fs::remove(partial_, ec);
     throw Error(where + ": the MP4 writer cannot be opened (is the folder writable?)");
   }
+  std::string trajectoryName = trajectory_.stem().string();
+  trajectoryName.insert(trajectoryName.begin(), '.');
+  trajectoryName.append(".recording.txt");
+  partialTrajectory_ = folder / trajectoryName;
+  trackedTrajectory_.emplace(partialTrajectory_);
+  trajectoryOut_.open(partialTrajectory_);
+  TumTrajectory::writeHeader(trajectoryOut_);
+  if (!trajectoryOut_) {
+    writer_.release();
+    std::error_code ec;
+    fs::remove(partial_, ec);
+    fs::remove(partialTrajectory_, ec);
+    throw Error(where + ": the trajectory '" + partialTrajectory_.string() + "' cannot be written");
+  }
 }
 
 VideoRecorder::~VideoRecorder() {
   if (closed_) return;
   writer_.release();
+  trajectoryOut_.close();
   std::error_code ec;
   fs::remove(partial_, ec);
+  fs::remove(partialTrajectory_, ec);
 }
 
 void VideoRecorder::write(const cv::Mat& bgr, double timestamp,
@@ -51,18 +67,31 @@ void VideoRecorder::write(const cv::Mat& bgr, double timestamp,
                 std::to_string(bgr.cols) + "x" + std::to_string(bgr.rows) + " but the video is " +
                 std::to_string(size_.width) + "x" + std::to_string(size_.height) + " BGR");
   writer_.write(bgr);
-  if (worldToCamera) poses_.poses.push_back({timestamp, *worldToCamera});
+  if (worldToCamera) {
+    TumTrajectory::writeLine(trajectoryOut_, {timestamp, *worldToCamera});
+    trajectoryOut_.flush();  // a crash keeps the lines of the frames already in the MP4
+  }
   ++frames_;
 }
 
 void VideoRecorder::close() {
   if (closed_) return;
   writer_.release();
+  trajectoryOut_.close();
   closed_ = true;
-  if (frames_ == 0) {
+  const auto discard = [&] {
     std::error_code ec;
     fs::remove(partial_, ec);
+    fs::remove(partialTrajectory_, ec);
+  };
+  if (frames_ == 0) {
+    discard();
     throw Error("recording '" + mp4_.string() + "' holds no frame; nothing written");
+  }
+  if (!trajectoryOut_) {
+    discard();
+    throw Error("recording '" + mp4_.string() + "': the trajectory '" + trajectory_.string() +
+                "' could not be written (is the disk full?)");
   }
   // cv::VideoWriter reports no write error (a full disk, a file-size limit): the finished file
   // must open and hold every frame before it takes the final name. Reading the container's
@@ -71,8 +100,7 @@ void VideoRecorder::close() {
     cv::VideoCapture check(partial_.string(), cv::CAP_FFMPEG);
     const double stored = check.isOpened() ? check.get(cv::CAP_PROP_FRAME_COUNT) : -1.0;
     if (stored != static_cast<double>(frames_)) {
-      std::error_code ec;
-      fs::remove(partial_, ec);
+      discard();
       throw Error("recording '" + mp4_.string() + "' could not be finished (" +
                   (stored < 0 ? std::string("the MP4 is unreadable")
                               : std::to_string(static_cast<long long>(stored)) + " of " +
@@ -80,14 +108,16 @@ void VideoRecorder::close() {
                   "): is the disk full or a file-size limit reached?");
     }
   }
-  poses_.save(trajectory_);
   std::error_code ec;
-  fs::rename(partial_, mp4_, ec);
+  fs::rename(partialTrajectory_, trajectory_, ec);
+  if (!ec) fs::rename(partial_, mp4_, ec);
   if (ec) {
-    fs::remove(partial_, ec);
+    discard();
+    fs::remove(trajectory_, ec);
     throw Error("recording '" + mp4_.string() + "' cannot be moved into place");
   }
   tracked_.reset();
+  trackedTrajectory_.reset();
 }
 
 }  // namespace reftrack::app

@@ -1,10 +1,12 @@
 #pragma once
 // VideoRecorder: writes composited frames to an MP4 (cv::VideoWriter, 'mp4v') at the source frame
 // rate, one output frame per call, and the trajectory used beside it as TUM
-// (`<stem>_trajectory.txt`, tracked frames only). Both are written under temporary names and
+// (`<stem>_trajectory.txt`, tracked frames only, streamed to disk line by line so memory stays
+// flat over long recordings). Both are written under temporary names and
 // renamed by close(), so an error or an abandoned recording (destroyed without close()) leaves
 // no half-written file at the target paths.
 #include <filesystem>
+#include <fstream>
 #include <opencv2/core.hpp>
 #include <opencv2/videoio.hpp>
 #include <optional>
@@ -38,9 +40,11 @@ class VideoRecorder {
  private:
   std::filesystem::path mp4_, trajectory_, partial_;
   std::optional<TemporaryOutput> tracked_;  // partial_, removed if a signal ends the process
+  std::filesystem::path partialTrajectory_;
+  std::ofstream trajectoryOut_;
+  std::optional<TemporaryOutput> trackedTrajectory_;
   cv::Size size_;
   cv::VideoWriter writer_;
-  TumTrajectory poses_;
   int frames_ = 0;
   bool closed_ = false;
 };

@@ -45,19 +45,24 @@ TumTrajectory TumTrajectory::load(const std::filesystem::path& file) {
   return traj;
 }
 
+void TumTrajectory::writeHeader(std::ostream& out) {
+  out << "# timestamp tx ty tz qx qy qz qw (camera pose in the world, TUM format)\n";
+}
+
+void TumTrajectory::writeLine(std::ostream& out, const StampedPose& p) {
+  const RigidPose c2w = p.worldToCamera.inverse();
+  const Eigen::Quaterniond q = c2w.quaternion();
+  const Eigen::Vector3d& t = c2w.translation();
+  out << std::fixed << std::setprecision(6) << p.timestamp << std::defaultfloat
+      << std::setprecision(17) << ' ' << t.x() << ' ' << t.y() << ' ' << t.z() << ' ' << q.x()
+      << ' ' << q.y() << ' ' << q.z() << ' ' << q.w() << '\n';
+}
+
 void TumTrajectory::save(const std::filesystem::path& file) const {
   writeFileAtomically(file, [&](const std::filesystem::path& tmp) {
     std::ofstream out(tmp);
-    out << "# timestamp tx ty tz qx qy qz qw (camera pose in the world, TUM format)\n";
-    out << std::setprecision(17);
-    for (const StampedPose& p : poses) {
-      const RigidPose c2w = p.worldToCamera.inverse();
-      const Eigen::Quaterniond q = c2w.quaternion();
-      const Eigen::Vector3d& t = c2w.translation();
-      out << std::fixed << std::setprecision(6) << p.timestamp << std::defaultfloat
-          << std::setprecision(17) << ' ' << t.x() << ' ' << t.y() << ' ' << t.z() << ' ' << q.x()
-          << ' ' << q.y() << ' ' << q.z() << ' ' << q.w() << '\n';
-    }
+    writeHeader(out);
+    for (const StampedPose& p : poses) writeLine(out, p);
     out.close();  // flushes: a full disk shows here
     if (!out) throw Error("cannot write trajectory file '" + file.string() + "'");
   });

@@ -93,12 +93,12 @@ int ffprobeFrames(const fs::path& file, const fs::path& dir) {
 }
 
 // Temporary files of unfinished outputs (writeFileAtomically's ".tmp-*", the recorder's
-// ".*.recording.mp4") anywhere under `dir`.
+// ".*.recording.mp4/.txt") anywhere under `dir`.
 std::vector<std::string> leftovers(const fs::path& dir) {
   std::vector<std::string> found;
   for (const auto& e : fs::recursive_directory_iterator(dir)) {
     const std::string name = e.path().filename().string();
-    if (name.rfind(".tmp-", 0) == 0 || name.find(".recording.mp4") != std::string::npos)
+    if (name.rfind(".tmp-", 0) == 0 || name.find(".recording.") != std::string::npos)
       found.push_back(name);
   }
   return found;
