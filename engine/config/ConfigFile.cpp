@@ -98,10 +98,19 @@ cv::FileStorage openConfigText(const std::string& text, const std::string& what,
   try {
     if (!fs.open(withYamlDirective(text), cv::FileStorage::READ | cv::FileStorage::MEMORY))
       throw Error(what + " " + invalid);
-    checkMatrices(fs.root(), what);
   } catch (const cv::Exception& e) {
     throw Error(what + " " + invalid + ": " + e.err);
+  } catch (const std::exception& e) {
+    // OpenCV 4.6's YAML parser lets std::length_error out on a long malformed type tag
+    // ("!!opencv-ma\xcc\xcc...", found by tests/fuzz).
+    throw Error(what + " " + invalid + " (" + e.what() + ")");
   }
+  // Every reader looks keys up from the root, which OpenCV asserts is a map (a top-level list or
+  // single value let that cv::Exception escape the labels and motion readers; tests/fuzz).
+  const cv::FileNode root = fs.root();
+  if (!root.empty() && !root.isNone() && !root.isMap())
+    throw Error(what + " must hold a map of key: value at the top level");
+  checkMatrices(root, what);
   return fs;
 }
 

@@ -86,3 +86,26 @@ TEST(ConfigFile, AMatrixWhoseHeaderDisagreesWithItsDataIsRefusedBeforeOpenCvAllo
                 .find("views[1].T is not a valid matrix"),
             std::string::npos);
 }
+
+// Regressions found by tests/fuzz (fuzz_camera_file, fuzz_labels_file, fuzz_motion_model_file).
+TEST(ConfigFile, ParserFailuresAndANonMapRootAreReftrackErrors) {
+  // OpenCV 4.6's parser threw std::length_error (not cv::Exception) on this mangled type tag.
+  const std::string mangledTag =
+      "image_width: 640\nimage_height: 480\n`amera_matrix: !!opencv-matrix\n   rows: 2\n   cols: "
+      "3\n   :td d\n   data: [ 500., 0., 319.5, 0., 500., 239.5, 0., 0., 1. "
+      "]\ndistortion_coefficients: "
+      "!!opencv-"
+      "ma\xcc\xcc\xcc\xcc\xcc\xcc\xcc\xcc\xcc\xcc\xcc\xcc\xcc\xcc\xcc\xcc\xcc\xcc\xcc\xcc\xcc\xcc"
+      "\xcc\xcc\xcc\xcc\xcc\xcc\xcc\xcc\xcc\xcc\xcc\xcc\xcc\xcc\xcc\xcc\xcc\xcc\xcc\xcc\xcc\xcc\xcc"
+      "\xcc\xcc\xcc\xcc\xcc\xcc\xcc\xcctrix\n   rows: 5\n   cols: 1\n   "
+      "\x9c\x8b\xc5\xdf\x9b\xf5\xdf\xe6 data: [ 0.1, -0.2, 0., 0., 0. ]\n";
+  const std::string tag = errorMessage([&] { openConfigText(mangledTag, "f"); });
+  EXPECT_EQ(tag.rfind("f is not valid OpenCV YAML/XML", 0), 0u) << tag;
+  // A top-level list or value: OpenCV asserts (cv::Exception) when a key is looked up in it.
+  for (const std::string text : {"- 1\n- 2\n", "%YAML:1.0\n---\n!labels:\n  - 1\n", "3\n"}) {
+    const std::string message = errorMessage([&] { openConfigText(text, "f"); });
+    EXPECT_TRUE(message == "f must hold a map of key: value at the top level" ||
+                message.rfind("f is not valid OpenCV YAML/XML", 0) == 0)
+        << text << " -> " << message;
+  }
+}
