@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian packages reftrack needs to build, test and run its demo.
 # Idempotent and non-interactive; works as root or through sudo.
+# --fuzz: also what scripts/fuzz.sh needs (clang's libFuzzer and sanitizer runtimes); the build
+# itself never needs them.
 set -euo pipefail
 
 PACKAGES=(
@@ -16,6 +18,9 @@ PACKAGES=(
   ffmpeg                                # ffprobe checks recorded MP4s; video codecs
   ccache                                # faster rebuilds
 )
+if [ "${1:-}" = "--fuzz" ]; then
+  PACKAGES+=(clang libclang-rt-14-dev libfuzzer-14-dev)  # scripts/fuzz.sh only
+fi
 
 missing=()
 for p in "${PACKAGES[@]}"; do

@@ -34,7 +34,7 @@ MapExtenderParams loadParams(const ExtendOptions& o) {
     readParameterFile(o.extendParams, [&](const cv::FileNode& root) {
       p.extension.read(root["extension"]);
       p.bundleAdjustment.read(root["bundle_adjustment"]);
-      p.preparation.read(root);
+      p.preparation.read(root, {"extension", "bundle_adjustment"});
     });
   p.check();
   return p;

@@ -1,6 +1,7 @@
 #include "app/viewer/OverlaySettings.hpp"
 
 #include "engine/config/ConfigValue.hpp"
+#include "engine/config/KnownKeys.hpp"
 #include "engine/core/Error.hpp"
 
 namespace reftrack::app {
@@ -30,6 +31,7 @@ void OverlaySettings::read(const cv::FileNode& node) {
   if (node.empty() || node.isNone()) return;
   if (!node.isMap()) throw Error("section 'overlay' must be a map");
   const std::string s = "overlay";
+  requireKeysWrittenBy(node, s, [](cv::FileStorage& fs) { OverlaySettings{}.write(fs); });
   readConfigValue(node, s, "size", size);
   readConfigValue(node, s, "offset_x", offset.x());
   readConfigValue(node, s, "offset_y", offset.y());

@@ -1,5 +1,6 @@
 #include "app/viewer/ViewerSettings.hpp"
 
+#include "engine/config/ConfigValue.hpp"
 #include "engine/core/AtomicFile.hpp"
 #include "engine/core/Error.hpp"
 
@@ -13,15 +14,7 @@ void ViewerSettings::check() const {
 ViewerSettings ViewerSettings::load(const std::filesystem::path& file) {
   ViewerSettings s;
   s.tracker = TrackerParams::load(file);  // names the file and key on error
-  const std::string where = "parameter file '" + file.string() + "'";
-  try {
-    cv::FileStorage fs(file.string(), cv::FileStorage::READ);
-    s.overlay.read(fs["overlay"]);
-  } catch (const Error& e) {
-    throw Error(where + ": " + e.what());
-  } catch (const cv::Exception& e) {
-    throw Error(where + " has a malformed overlay entry: " + e.err);
-  }
+  readParameterFile(file, [&](const cv::FileNode& root) { s.overlay.read(root["overlay"]); });
   return s;
 }
 

@@ -38,7 +38,7 @@ void parseGrid(const std::string& text, const std::string& board, int& cols, int
     throw Error("board '" + board + "': grid '" + text + "' must look like 9x6; " + kForms);
   const double c = parseNumber(text.substr(0, x), board, "grid columns");
   const double r = parseNumber(text.substr(x + 1), board, "grid rows");
-  if (c != std::floor(c) || r != std::floor(r) || c > 1000 || r > 1000)
+  if (c != std::floor(c) || r != std::floor(r) || c < 0 || r < 0 || c > 1000 || r > 1000)
     throw Error("board '" + board + "': grid '" + text + "' must be two whole numbers");
   cols = static_cast<int>(c);
   rows = static_cast<int>(r);

@@ -1,6 +1,7 @@
 #include "engine/config/BundleAdjustmentParams.hpp"
 
 #include "engine/config/ConfigValue.hpp"
+#include "engine/config/KnownKeys.hpp"
 #include "engine/core/Error.hpp"
 
 namespace reftrack {
@@ -23,6 +24,7 @@ void BundleAdjustmentParams::write(cv::FileStorage& fs) const {
 
 void BundleAdjustmentParams::read(const cv::FileNode& node) {
   const std::string s = "bundle_adjustment";
+  requireKeysWrittenBy(node, s, [](cv::FileStorage& fs) { BundleAdjustmentParams{}.write(fs); });
   readConfigValue(node, s, "loss", loss);
   readConfigValue(node, s, "loss_scale_px", lossScalePx);
   readConfigValue(node, s, "outlier_threshold_px", outlierThresholdPx);

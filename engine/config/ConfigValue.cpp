@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "engine/config/ConfigFile.hpp"
 #include "engine/core/Error.hpp"
 
 namespace reftrack {
@@ -94,13 +95,7 @@ void readParameterFile(const std::filesystem::path& file,
                        const std::function<void(const cv::FileNode& root)>& read) {
   const std::string where = "parameter file '" + file.string() + "'";
   if (!std::filesystem::exists(file)) throw Error(where + " does not exist");
-  cv::FileStorage fs;
-  try {
-    if (!fs.open(file.string(), cv::FileStorage::READ))
-      throw Error(where + " cannot be opened as OpenCV YAML/XML");
-  } catch (const cv::Exception& e) {
-    throw Error(where + " is not valid OpenCV YAML/XML: " + e.err);
-  }
+  cv::FileStorage fs = openConfigFile(file, where);
   try {
     read(fs.root());
   } catch (const Error& e) {

@@ -18,12 +18,13 @@ void readConfigValue(const cv::FileNode& section, const std::string& sectionName
 void readConfigValue(const cv::FileNode& section, const std::string& sectionName,
                      const std::string& key, std::string& value);
 
-// Throws reftrack::Error "<field> must be ..." unless value is finite and within [lo, hi].
-// Opens an OpenCV YAML/XML parameter file and hands its root to `read`; every failure (missing,
-// unparsable, a bad entry) throws reftrack::Error naming the file.
+// Opens an OpenCV YAML/XML parameter file (the `%YAML:1.0` line may be left out) and hands its
+// root to `read`; every failure (missing, unparsable, an unknown or bad entry) throws
+// reftrack::Error naming the file.
 void readParameterFile(const std::filesystem::path& file,
                        const std::function<void(const cv::FileNode& root)>& read);
 
+// Throws reftrack::Error "<field> must be ..." unless value is finite and within [lo, hi].
 void requireFiniteInRange(const std::string& field, double value, double lo, double hi);
 void requireIntInRange(const std::string& field, int value, int lo, int hi);
 

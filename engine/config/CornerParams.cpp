@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "engine/config/ConfigValue.hpp"
+#include "engine/config/KnownKeys.hpp"
 #include "engine/config/ResolutionScale.hpp"
 #include "engine/core/Error.hpp"
 
@@ -43,6 +44,7 @@ void CornerParams::write(cv::FileStorage& fs) const {
 
 void CornerParams::read(const cv::FileNode& node) {
   const std::string s = "corners";
+  requireKeysWrittenBy(node, s, [](cv::FileStorage& fs) { CornerParams{}.write(fs); });
   readConfigValue(node, s, "count", countAt320x240);
   readConfigValue(node, s, "quality", quality);
   readConfigValue(node, s, "min_distance_px", minDistancePx);

@@ -1,6 +1,7 @@
 #include "engine/config/CorrelationParams.hpp"
 
 #include "engine/config/ConfigValue.hpp"
+#include "engine/config/KnownKeys.hpp"
 
 namespace reftrack {
 
@@ -19,6 +20,7 @@ void CorrelationParams::write(cv::FileStorage& fs) const {
 
 void CorrelationParams::read(const cv::FileNode& node) {
   const std::string s = "correlation";
+  requireKeysWrittenBy(node, s, [](cv::FileStorage& fs) { CorrelationParams{}.write(fs); });
   readConfigValue(node, s, "half_window", halfWindow);
   readConfigValue(node, s, "min_score", minScore);
   readConfigValue(node, s, "search_half_width_px", searchHalfWidthPx);

@@ -1,6 +1,7 @@
 #include "engine/config/HomographyTrackerParams.hpp"
 
 #include "engine/config/ConfigValue.hpp"
+#include "engine/config/KnownKeys.hpp"
 #include "engine/core/Error.hpp"
 
 namespace reftrack {
@@ -63,6 +64,7 @@ void HomographyTrackerParams::write(cv::FileStorage& fs) const {
 
 void HomographyTrackerParams::read(const cv::FileNode& node) {
   const std::string s = "homography";
+  requireKeysWrittenBy(node, s, [](cv::FileStorage& fs) { HomographyTrackerParams{}.write(fs); });
   readConfigValue(node, s, "guided_search_half_size_px", guidedSearchHalfSizePx);
   readConfigValue(node, s, "frame_to_frame_prediction", frameToFramePrediction);
   readConfigValue(node, s, "reacquire_whole_image", reacquireWholeImage);

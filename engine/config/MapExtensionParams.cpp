@@ -1,6 +1,7 @@
 #include "engine/config/MapExtensionParams.hpp"
 
 #include "engine/config/ConfigValue.hpp"
+#include "engine/config/KnownKeys.hpp"
 
 namespace reftrack {
 
@@ -27,6 +28,7 @@ void MapExtensionParams::write(cv::FileStorage& fs) const {
 
 void MapExtensionParams::read(const cv::FileNode& node) {
   const std::string s = "extension";
+  requireKeysWrittenBy(node, s, [](cv::FileStorage& fs) { MapExtensionParams{}.write(fs); });
   readConfigValue(node, s, "max_distance_m", maxDistanceMetres);
   readConfigValue(node, s, "max_angle_deg", maxAngleDeg);
   readConfigValue(node, s, "min_inliers", minInliers);

@@ -1,6 +1,7 @@
 #include "engine/config/PoseParams.hpp"
 
 #include "engine/config/ConfigValue.hpp"
+#include "engine/config/KnownKeys.hpp"
 #include "engine/core/Error.hpp"
 
 namespace reftrack {
@@ -30,6 +31,7 @@ void PoseParams::write(cv::FileStorage& fs) const {
 
 void PoseParams::read(const cv::FileNode& node) {
   const std::string s = "pose";
+  requireKeysWrittenBy(node, s, [](cv::FileStorage& fs) { PoseParams{}.write(fs); });
   std::string estimatorName = toString(estimator);
   readConfigValue(node, s, "estimator", estimatorName);
   estimator = parsePoseEstimatorKind(estimatorName);

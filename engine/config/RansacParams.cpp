@@ -1,6 +1,7 @@
 #include "engine/config/RansacParams.hpp"
 
 #include "engine/config/ConfigValue.hpp"
+#include "engine/config/KnownKeys.hpp"
 
 namespace reftrack {
 
@@ -27,6 +28,7 @@ void RansacParams::write(cv::FileStorage& fs) const {
 
 void RansacParams::read(const cv::FileNode& node) {
   const std::string s = "ransac";
+  requireKeysWrittenBy(node, s, [](cv::FileStorage& fs) { RansacParams{}.write(fs); });
   readConfigValue(node, s, "max_iterations", maxIterations);
   readConfigValue(node, s, "early_accept_support", earlyAcceptSupport);
   readConfigValue(node, s, "early_accept_min_iterations", earlyAcceptMinIterations);

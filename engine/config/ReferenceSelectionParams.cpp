@@ -1,6 +1,7 @@
 #include "engine/config/ReferenceSelectionParams.hpp"
 
 #include "engine/config/ConfigValue.hpp"
+#include "engine/config/KnownKeys.hpp"
 
 namespace reftrack {
 
@@ -21,6 +22,7 @@ void ReferenceSelectionParams::write(cv::FileStorage& fs) const {
 
 void ReferenceSelectionParams::read(const cv::FileNode& node) {
   const std::string s = "references";
+  requireKeysWrittenBy(node, s, [](cv::FileStorage& fs) { ReferenceSelectionParams{}.write(fs); });
   readConfigValue(node, s, "angle_weight", angleWeight);
   readConfigValue(node, s, "min_shared_points", minSharedPoints);
   readConfigValue(node, s, "switch_margin", switchMargin);

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "engine/config/ConfigValue.hpp"
+#include "engine/config/KnownKeys.hpp"
 #include "engine/core/Error.hpp"
 
 namespace reftrack {
@@ -56,6 +57,7 @@ void RelocalisationParams::write(cv::FileStorage& fs) const {
 
 void RelocalisationParams::read(const cv::FileNode& node) {
   const std::string s = "relocalisation";
+  requireKeysWrittenBy(node, s, [](cv::FileStorage& fs) { RelocalisationParams{}.write(fs); });
   readConfigValue(node, s, "enabled", enabled);
   readConfigValue(node, s, "keypoints", keypoints);
   readConfigValue(node, s, "features_per_frame", featuresPerFrame);

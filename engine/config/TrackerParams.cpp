@@ -1,6 +1,7 @@
 #include "engine/config/TrackerParams.hpp"
 
 #include "engine/config/ConfigValue.hpp"
+#include "engine/config/KnownKeys.hpp"
 #include "engine/core/AtomicFile.hpp"
 #include "engine/core/Error.hpp"
 
@@ -65,6 +66,8 @@ void TrackerParams::write(cv::FileStorage& fs) const {
 
 void TrackerParams::read(const cv::FileNode& root) {
   if (!root.isMap()) throw Error("parameters must be a map of sections");
+  requireKeysWrittenBy(
+      root, "", [](cv::FileStorage& fs) { TrackerParams{}.write(fs); }, kOtherSections);
   std::string modeName = toString(mode);
   readConfigValue(root, "", "mode", modeName);
   mode = parseTrackingMode(modeName);

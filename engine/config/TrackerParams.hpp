@@ -2,9 +2,10 @@
 // TrackerParams: every tracking parameter in one YAML file (the file `--params` accepts and the
 // viewer's panels edit). Sections: corners, correlation, ransac, homography, wide_baseline, pose,
 // relocalisation, references (N-reference maps), plus `mode: 6dof|homography`. Missing keys keep
-// the paper's defaults.
+// the paper's defaults; an unknown key or section is an error naming the nearest known one.
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "engine/config/CornerParams.hpp"
 #include "engine/config/CorrelationParams.hpp"
@@ -24,6 +25,9 @@ std::string toString(TrackingMode mode);
 TrackingMode parseTrackingMode(const std::string& text);
 
 struct TrackerParams {
+  // Sections of the same file that other readers check (the viewer's `overlay`).
+  inline static const std::vector<std::string> kOtherSections = {"overlay"};
+
   TrackingMode mode = TrackingMode::SixDof;
   CornerParams corners;
   CorrelationParams correlation;

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "engine/config/ConfigValue.hpp"
+#include "engine/config/KnownKeys.hpp"
 
 namespace reftrack {
 
@@ -44,6 +45,7 @@ void WideBaselineParams::write(cv::FileStorage& fs) const {
 
 void WideBaselineParams::read(const cv::FileNode& node) {
   const std::string s = "wide_baseline";
+  requireKeysWrittenBy(node, s, [](cv::FileStorage& fs) { WideBaselineParams{}.write(fs); });
   readConfigValue(node, s, "dx", dx);
   readConfigValue(node, s, "dy", dy);
   readConfigValue(node, s, "n", halfWindow);

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <opencv2/core.hpp>
 
+#include "engine/config/ConfigFile.hpp"
+#include "engine/config/KnownKeys.hpp"
 #include "engine/core/AtomicFile.hpp"
 #include "engine/core/Error.hpp"
 
@@ -43,12 +45,13 @@ void saveMotionModel(const std::filesystem::path& file, const FittedMotionModel&
 FittedMotionModel loadMotionModel(const std::filesystem::path& file) {
   const std::string where = "motion model file '" + file.string() + "'";
   if (!std::filesystem::exists(file)) throw Error(where + " does not exist");
-  cv::FileStorage fs;
+  cv::FileStorage fs = openConfigFile(file, where, "is not valid OpenCV YAML");
   try {
-    if (!fs.open(file.string(), cv::FileStorage::READ))
-      throw Error(where + " cannot be opened as OpenCV YAML");
-  } catch (const cv::Exception& e) {
-    throw Error(where + " is not valid OpenCV YAML: " + e.err);
+    requireKnownKeys(fs.root(), "",
+                     {"kind", "order", "weights", "Q", "explained_variance", "source_trajectory",
+                      "frame_count"});
+  } catch (const Error& e) {
+    throw Error(where + ": " + e.what());
   }
   auto node = [&](const char* key) {
     cv::FileNode n = fs[key];

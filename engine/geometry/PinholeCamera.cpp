@@ -6,6 +6,8 @@
 #include <opencv2/calib3d.hpp>
 #include <sstream>
 
+#include "engine/config/ConfigFile.hpp"
+#include "engine/config/KnownKeys.hpp"
 #include "engine/core/AtomicFile.hpp"
 #include "engine/core/Error.hpp"
 
@@ -24,6 +26,30 @@ cv::TermCriteria exactUndistortion() {
   // stops once the point re-distorts to within 1e-4 px.
   return {cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 100, 1e-4};
 }
+
+// The keys a camera file may hold: ours, then the records OpenCV's calibration samples
+// (samples/cpp/calibration.cpp, the camera_calibration tutorial, aruco's
+// calibrate_camera_charuco) write beside the intrinsics, which are accepted and ignored.
+const std::vector<std::string> kCameraFileKeys = {"image_width",
+                                                  "image_height",
+                                                  "camera_matrix",
+                                                  "distortion_coefficients",
+                                                  "calibration_time",
+                                                  "nframes",
+                                                  "nr_of_frames",
+                                                  "board_width",
+                                                  "board_height",
+                                                  "square_size",
+                                                  "marker_size",
+                                                  "aspectRatio",
+                                                  "fix_aspect_ratio",
+                                                  "flags",
+                                                  "fisheye_model",
+                                                  "avg_reprojection_error",
+                                                  "per_view_reprojection_errors",
+                                                  "extrinsic_parameters",
+                                                  "image_points",
+                                                  "grid_points"};
 
 }  // namespace
 
@@ -78,12 +104,11 @@ void PinholeCamera::check() const {
 
 PinholeCamera PinholeCamera::load(const std::filesystem::path& file) {
   if (!std::filesystem::exists(file)) throw Error(where(file) + " does not exist");
-  cv::FileStorage fs;
+  cv::FileStorage fs = openConfigFile(file, where(file));
   try {
-    if (!fs.open(file.string(), cv::FileStorage::READ))
-      throw Error(where(file) + " cannot be opened as OpenCV YAML/XML");
-  } catch (const cv::Exception& e) {
-    throw Error(where(file) + " is not valid OpenCV YAML/XML: " + e.err);
+    requireKnownKeys(fs.root(), "", kCameraFileKeys);
+  } catch (const Error& e) {
+    throw Error(where(file) + ": " + e.what());
   }
   auto requireNode = [&](const char* key) {
     cv::FileNode n = fs[key];

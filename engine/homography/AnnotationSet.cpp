@@ -1,10 +1,10 @@
 #include "engine/homography/AnnotationSet.hpp"
 
 #include <cmath>
-#include <fstream>
 #include <limits>
-#include <sstream>
 
+#include "engine/config/ConfigFile.hpp"
+#include "engine/config/KnownKeys.hpp"
 #include "engine/core/AtomicFile.hpp"
 #include "engine/core/Error.hpp"
 #include "engine/homography/HomographyDlt.hpp"
@@ -20,19 +20,11 @@ AnnotationSet::AnnotationSet(std::vector<Annotation> labels) : labels_(std::move
 AnnotationSet AnnotationSet::load(const std::filesystem::path& file) {
   const std::string where = "labels file '" + file.string() + "'";
   if (!std::filesystem::exists(file)) throw Error(where + " does not exist");
-  cv::FileStorage fs;
+  const cv::FileStorage fs = openConfigFile(file, where);
   try {
-    // OpenCV's YAML reader needs the "%YAML:1.0" directive; accept hand-written files without it.
-    std::ifstream in(file);
-    std::stringstream text;
-    text << in.rdbuf();
-    std::string content = text.str();
-    if (content.rfind("%YAML", 0) != 0 && content.find("<?xml") == std::string::npos)
-      content = "%YAML:1.0\n---\n" + content;
-    if (!fs.open(content, cv::FileStorage::READ | cv::FileStorage::MEMORY))
-      throw Error(where + " cannot be opened as OpenCV YAML/XML");
-  } catch (const cv::Exception& e) {
-    throw Error(where + " is not valid OpenCV YAML/XML: " + e.err);
+    requireKnownKeys(fs.root(), "", {"labels"});
+  } catch (const Error& e) {
+    throw Error(where + ": " + e.what());
   }
   const cv::FileNode list = fs["labels"];
   if (list.empty()) throw Error(where + ": missing key 'labels'");
@@ -40,8 +32,14 @@ AnnotationSet AnnotationSet::load(const std::filesystem::path& file) {
   std::vector<Annotation> labels;
   int index = 0;
   for (const cv::FileNode& n : list) {
-    const std::string entry = where + ": labels[" + std::to_string(index++) + "]";
+    const std::string at = "labels[" + std::to_string(index++) + "]";
+    const std::string entry = where + ": " + at;
     if (!n.isMap()) throw Error(entry + " must be a map {text, x, y}");
+    try {
+      requireKnownKeys(n, at, {"text", "x", "y"});
+    } catch (const Error& e) {
+      throw Error(where + ": " + e.what());
+    }
     Annotation a;
     const cv::FileNode t = n["text"], x = n["x"], y = n["y"];
     if (t.empty() || !t.isString()) throw Error(entry + ": 'text' is missing or not text");

@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "engine/config/ConfigValue.hpp"
+#include "engine/config/KnownKeys.hpp"
 #include "engine/core/Error.hpp"
 #include "engine/geometry/FundamentalMatrix.hpp"
 #include "engine/matching/NccCorrelation.hpp"
@@ -87,14 +88,16 @@ void EpipolarMatcherParams::check() const {
 
 void EpipolarMatcherParams::write(cv::FileStorage& fs) const {
   fs << "half_window" << halfWindow << "min_score" << minScore << "min_score_margin"
-     << minScoreMargin << "slant_azimuths" << slantAzimuths << "slant_deg" << slantDeg
-     << "max_epipolar_distance_px" << maxEpipolarDistancePx << "min_depth_m" << minDepthMetres
-     << "max_depth_m" << maxDepthMetres << "min_parallax_deg" << minParallaxDeg
-     << "max_reprojection_error_px" << maxReprojectionErrorPx;
+     << minScoreMargin << "max_peak_offset_px" << maxPeakOffsetPx << "slant_azimuths"
+     << slantAzimuths << "slant_deg" << slantDeg << "max_epipolar_distance_px"
+     << maxEpipolarDistancePx << "min_depth_m" << minDepthMetres << "max_depth_m" << maxDepthMetres
+     << "min_parallax_deg" << minParallaxDeg << "max_reprojection_error_px"
+     << maxReprojectionErrorPx;
 }
 
 void EpipolarMatcherParams::read(const cv::FileNode& node) {
   const std::string s = "matching";
+  requireKeysWrittenBy(node, s, [](cv::FileStorage& fs) { EpipolarMatcherParams{}.write(fs); });
   readConfigValue(node, s, "half_window", halfWindow);
   readConfigValue(node, s, "min_score", minScore);
   readConfigValue(node, s, "min_score_margin", minScoreMargin);

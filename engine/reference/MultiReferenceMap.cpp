@@ -6,6 +6,7 @@
 #include <set>
 #include <sstream>
 
+#include "engine/config/KnownKeys.hpp"
 #include "engine/core/AtomicFile.hpp"
 #include "engine/core/Error.hpp"
 
@@ -196,6 +197,18 @@ MultiReferenceMap MultiReferenceMap::load(const std::filesystem::path& folder) {
 
   MultiReferenceMap map;
   try {
+    const auto requireKnown = [&](const cv::FileNode& node, const std::string& path,
+                                  const std::vector<std::string>& known) {
+      try {
+        requireKnownKeys(node, path, known);
+      } catch (const Error& e) {
+        throw Error(where + ": " + e.what());
+      }
+    };
+    requireKnown(fs.root(), "",
+                 {"format", "version", "image_width", "image_height", "camera_matrix",
+                  "distortion_coefficients", "pose_source", "keypoint_kind", "views", "point_count",
+                  "points", "observations", "preparation_params"});
     const auto need = [&](const cv::FileNode& parent, const std::string& key,
                           const std::string& name) {
       cv::FileNode n = parent[key];
@@ -239,6 +252,7 @@ MultiReferenceMap MultiReferenceMap::load(const std::filesystem::path& folder) {
       const cv::FileNode node = viewsNode[static_cast<int>(v)];
       const std::string at = viewName(v);
       if (!node.isMap()) throw Error(where + ": field '" + at + "' is not a map");
+      requireKnown(node, at, {"name", "T", "anchored", "corners", "keypoints"});
       ReferenceView view;
       view.name = static_cast<std::string>(need(node, "name", at + ".name"));
       cv::Mat T = readMat(node, "T", at + ".T", 4, 4);

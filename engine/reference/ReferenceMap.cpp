@@ -4,6 +4,8 @@
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
+#include "engine/config/ConfigFile.hpp"
+#include "engine/config/KnownKeys.hpp"
 #include "engine/core/AtomicFile.hpp"
 #include "engine/core/Error.hpp"
 
@@ -39,13 +41,7 @@ cv::FileStorage openReferenceMapFile(const std::filesystem::path& file) {
   const std::string where = "reference map '" + file.string() + "'";
   if (!std::filesystem::exists(file))
     throw Error(where + " does not exist (run `reftrack prepare` first)");
-  cv::FileStorage fs;
-  try {
-    if (!fs.open(file.string(), cv::FileStorage::READ)) throw Error(where + " cannot be opened");
-  } catch (const cv::Exception& e) {
-    throw Error(where + " is corrupt or truncated: " + e.err);
-  }
-  return fs;
+  return openConfigFile(file, where, "is corrupt or truncated");
 }
 
 void ReferenceMap::check() const {
@@ -125,6 +121,15 @@ ReferenceMap ReferenceMap::load(const std::filesystem::path& folder) {
   cv::FileStorage fs = openReferenceMapFile(file);
   ReferenceMap map;
   try {
+    try {
+      requireKnownKeys(
+          fs.root(), "",
+          {"format", "version", "image_width", "image_height", "camera_matrix",
+           "distortion_coefficients", "T_A", "T_B", "reference_a", "reference_b", "pose_source",
+           "corners_a", "corners_b", "matches", "points_a", "preparation_params"});
+    } catch (const Error& e) {
+      throw Error(where + ": " + e.what());
+    }
     const auto need = [&](const char* key) {
       cv::FileNode n = fs[key];
       if (n.empty()) throw Error(where + ": missing field '" + key + "' (truncated file?)");

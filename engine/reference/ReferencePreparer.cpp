@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "engine/config/ConfigValue.hpp"
+#include "engine/config/KnownKeys.hpp"
 #include "engine/core/Error.hpp"
 #include "engine/features/CornerDetector.hpp"
 
@@ -94,8 +95,11 @@ void ReferencePreparerParams::write(cv::FileStorage& fs) const {
   fs << "}";
 }
 
-void ReferencePreparerParams::read(const cv::FileNode& root) {
+void ReferencePreparerParams::read(const cv::FileNode& root,
+                                   const std::vector<std::string>& otherSections) {
   if (!root.isMap()) throw Error("preparation parameters must be a map of sections");
+  requireKeysWrittenBy(
+      root, "", [](cv::FileStorage& fs) { ReferencePreparerParams{}.write(fs); }, otherSections);
   corners.read(root["corners"]);
   matching.read(root["matching"]);
   readConfigValue(root["marker"], "marker", "ambiguity_ratio", marker.ambiguityRatio);

@@ -60,8 +60,10 @@ struct ReferencePreparerParams {
   void check() const;  // throws reftrack::Error naming the bad field
   // Sections corners, matching, marker, preparation, relocalisation.
   void write(cv::FileStorage& fs) const;
-  void read(const cv::FileNode& root);  // missing keys keep their value; then check()
-  std::string toYaml() const;           // the whole set as YAML text (ReferenceMap's record)
+  // Missing keys keep their value; then check(). An unknown key or section throws, except the
+  // top-level `otherSections` the caller reads from the same file itself.
+  void read(const cv::FileNode& root, const std::vector<std::string>& otherSections = {});
+  std::string toYaml() const;  // the whole set as YAML text (ReferenceMap's record)
   // Throws reftrack::Error naming the file and the key at fault.
   static ReferencePreparerParams load(const std::filesystem::path& file);
 };

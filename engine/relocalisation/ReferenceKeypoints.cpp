@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 
+#include "engine/config/KnownKeys.hpp"
 #include "engine/core/Error.hpp"
 
 namespace reftrack {
@@ -50,6 +51,7 @@ void ReferenceKeypoints::write(cv::FileStorage& fs, const std::string& name) con
 
 ReferenceKeypoints ReferenceKeypoints::read(const cv::FileNode& node, const std::string& name) {
   if (node.empty() || !node.isMap()) throw Error(name + ": missing or not a map");
+  requireKnownKeys(node, name, {"count", "keypoints", "descriptors", "points"});
   ReferenceKeypoints r;
   int count = -1;
   cv::Mat kp, pts;

@@ -52,3 +52,21 @@ TEST(ViewerSettings, BadOverlayEntryNamesFileAndKey) {
     EXPECT_NE(m.find("line_width_px"), std::string::npos) << m;
   }
 }
+
+TEST(ViewerSettings, UnknownOverlayKeysNameTheNearestAndTheYamlLineIsOptional) {
+  const auto dir = test::freshTempDir("ViewerSettings_Strict");
+  std::ofstream(dir / "s.yml") << "overlay:\n  line_width: 3\n";
+  try {
+    ViewerSettings::load(dir / "s.yml");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find(
+                  "overlay.line_width: unknown key — did you mean overlay.line_width_px?"),
+              std::string::npos)
+        << e.what();
+  }
+  std::ofstream(dir / "t.yml") << "overlay:\n  size: 0.4\nransac: {seed: 4}\n";
+  const ViewerSettings s = ViewerSettings::load(dir / "t.yml");
+  EXPECT_DOUBLE_EQ(s.overlay.size, 0.4);
+  EXPECT_EQ(s.tracker.ransac.seed, 4);
+}

@@ -43,3 +43,10 @@ TEST(CalibrationBoard, RejectsMalformedSpecsNamingTheField) {
             std::string::npos);
   EXPECT_THROW(CalibrationBoard().cornerPosition(54), Error);
 }
+
+// Found by tests/fuzz (fuzz_board_string): a huge negative grid size was cast to int (undefined
+// behaviour) before the range check.
+TEST(CalibrationBoard, HugeNegativeGridIsAnErrorNotACast) {
+  EXPECT_THROW(CalibrationBoard::parse("chessboard:-6.7e97x6:0.025"), Error);
+  EXPECT_THROW(CalibrationBoard::parse("charuco:DICT_6X6_250:5x-1e300:0.04:0.02"), Error);
+}

@@ -89,3 +89,32 @@ TEST(TrackerParams, ModeNames) {
   EXPECT_EQ(parseTrackingMode("homography"), TrackingMode::Homography);
   EXPECT_THROW(parseTrackingMode("affine"), Error);
 }
+
+TEST(TrackerParams, UnknownKeysAndSectionsNameTheNearestKnownOne) {
+  const auto dir = freshTempDir("TrackerParams_strict");
+  const auto bad = [&](const std::string& body) {
+    const auto file = writeText(dir / "p.yml", "%YAML:1.0\n" + body);
+    return errorMessage([&] { TrackerParams::load(file); });
+  };
+  EXPECT_EQ(bad("ransac: {iterations: 200}\n"),
+            "parameter file '" + (dir / "p.yml").string() +
+                "': ransac.iterations: unknown key — did you mean ransac.max_iterations?");
+  EXPECT_NE(bad("ransca:\n  max_iterations: 200\n")
+                .find("ransca: unknown section — did you mean ransac?"),
+            std::string::npos);
+  EXPECT_NE(bad("mod: homography\n").find("mod: unknown key — did you mean mode?"),
+            std::string::npos);
+  EXPECT_NE(bad("relocalisation:\n  enable: false\n")
+                .find("relocalisation.enable: unknown key — did you mean relocalisation.enabled?"),
+            std::string::npos);
+  // The viewer's overlay section shares the file; its keys are the viewer's to check.
+  EXPECT_EQ(bad("overlay:\n  size: 0.3\n"), "(no error)");
+}
+
+TEST(TrackerParams, ReadsAHandWrittenFileWithoutTheYamlDirective) {
+  const auto dir = freshTempDir("TrackerParams_noDirective");
+  const TrackerParams p = TrackerParams::load(
+      writeText(dir / "p.yml", "# mine\nmode: homography\nransac: {max_iterations: 33}\n"));
+  EXPECT_EQ(p.mode, TrackingMode::Homography);
+  EXPECT_EQ(p.ransac.maxIterations, 33);
+}

@@ -65,8 +65,10 @@ TEST(MotionModelFile, LoadNamesTheBadField) {
   EXPECT_NE(messageFor("kind: ar", "kind: other").find("'kind'"), std::string::npos);
   EXPECT_NE(messageFor("frame_count: 321", "frame_count: -4").find("'frame_count'"),
             std::string::npos);
-  EXPECT_NE(messageFor("source_trajectory", "source_x").find("missing key 'source_trajectory'"),
-            std::string::npos);
+  const std::string unknown = messageFor("source_trajectory", "source_x");
+  EXPECT_NE(unknown.find("source_x: unknown key — did you mean source_trajectory?"),
+            std::string::npos)
+      << unknown;
   EXPECT_NE(messageFor("1.5000000000000000e+00", ".Nan").find("NaN"), std::string::npos);
 }
 
@@ -75,4 +77,35 @@ TEST(MotionModelFile, MissingOrNonYamlFileIsAnError) {
   EXPECT_THROW(loadMotionModel(dir / "none.yml"), Error);
   std::ofstream(dir / "junk.yml") << "{{{{ not yaml";
   EXPECT_THROW(loadMotionModel(dir / "junk.yml"), Error);
+}
+
+TEST(MotionModelFile, UnknownKeysNameTheNearestAndTheYamlLineIsOptional) {
+  const auto dir = test::freshTempDir("MotionModelFile_Strict");
+  saveMotionModel(dir / "good.yml", sample());
+  std::ifstream in(dir / "good.yml");
+  const std::string good((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto load = [&](const std::string& text) {
+    std::ofstream(dir / "m.yml") << text;
+    try {
+      return loadMotionModel(dir / "m.yml").model.order() == 2 ? std::string("loaded")
+                                                               : std::string("wrong order");
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+  };
+  const auto replaced = [&](const std::string& from, const std::string& to) {
+    std::string text = good;
+    const auto pos = text.find(from);
+    EXPECT_NE(pos, std::string::npos) << from;
+    return pos == std::string::npos ? text : text.replace(pos, from.size(), to);
+  };
+  // A misspelt scalar key and a misspelt matrix (a map in YAML, but a value here).
+  EXPECT_NE(load(replaced("frame_count:", "frames_count:"))
+                .find("m.yml': frames_count: unknown key — did you mean frame_count?"),
+            std::string::npos);
+  EXPECT_NE(
+      load(replaced("weights:", "wieghts:")).find("wieghts: unknown key — did you mean weights?"),
+      std::string::npos);
+  ASSERT_EQ(good.rfind("%YAML:1.0\n", 0), 0u);
+  EXPECT_EQ(load(good.substr(10)), "loaded");
 }

@@ -153,3 +153,28 @@ TEST(PinholeCamera, UndistortIsExactAtTheCornersOfAStrongLens) {
   EXPECT_LT(worst, 1e-3);
   EXPECT_GT(worstDefault, 0.05);  // the default would not do
 }
+
+TEST(PinholeCamera, UnknownKeysNameTheNearestAndTheYamlLineIsOptional) {
+  const auto dir = test::freshTempDir("PinholeCamera_Strict");
+  const std::string K = "500, 0, 320, 0, 500, 240, 0, 0, 1", D = "0.1, 0, 0, 0, 0";
+  const std::string good = cameraYaml("640", K, D);
+  // A misspelt distortion matrix would otherwise leave the lens undistorted in silence.
+  std::string misspelt = good;
+  misspelt.replace(misspelt.find("distortion_coefficients"), 23, "distortion_coefficents");
+  EXPECT_NE(loadError(writeFile(dir, "key.yml", misspelt))
+                .find("key.yml': distortion_coefficents: unknown key — did you mean "
+                      "distortion_coefficients?"),
+            std::string::npos);
+  EXPECT_NE(loadError(writeFile(dir, "section.yml", good + "camera:\n  fx: 3\n"))
+                .find("camera: unknown section — did you mean"),
+            std::string::npos);
+  // Without "%YAML:1.0" (hand-written) the file is read the same.
+  const auto bare = writeFile(dir, "bare.yml", good.substr(good.find("image_width")));
+  EXPECT_EQ(loadError(bare), "");
+  EXPECT_DOUBLE_EQ(PinholeCamera::load(bare).distortion()[0], 0.1);
+  // What OpenCV's calibration samples write beside the intrinsics is accepted.
+  EXPECT_EQ(loadError(writeFile(dir, "sample.yml",
+                                good + "calibration_time: \"today\"\nnframes: 13\n"
+                                       "avg_reprojection_error: 0.39\nflags: 2\n")),
+            "");
+}

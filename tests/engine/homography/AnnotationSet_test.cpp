@@ -35,7 +35,7 @@ TEST(AnnotationSet, ErrorsNameFileAndEntry) {
     }
     return std::string("(no error)");
   };
-  EXPECT_NE(bad("a.yml", "other: 1\n").find("missing key 'labels'"), std::string::npos);
+  EXPECT_NE(bad("a.yml", "").find("missing key 'labels'"), std::string::npos);
   EXPECT_NE(bad("b.yml", "labels:\n  - { x: 1, y: 2 }\n").find("labels[0]: 'text'"),
             std::string::npos);
   EXPECT_NE(bad("c.yml", "labels:\n  - { text: a, x: 1, y: 2 }\n  - { text: b, x: q, y: 2 }\n")
@@ -60,4 +60,26 @@ TEST(AnnotationSet, LoadsAHandWrittenFileWithoutTheYamlDirective) {
   EXPECT_EQ(set.labels()[0].text, "Tower");
   EXPECT_DOUBLE_EQ(set.labels()[0].position.x, 160.5);
   EXPECT_DOUBLE_EQ(set.labels()[1].position.y, 200.0);
+}
+
+TEST(AnnotationSet, UnknownKeysNameTheNearestKnownKey) {
+  const auto dir = test::freshTempDir("AnnotationSet_strict");
+  const auto message = [&](const std::string& body) {
+    std::ofstream(dir / "l.yml") << body;
+    try {
+      AnnotationSet::load(dir / "l.yml");
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("(no error)");
+  };
+  EXPECT_NE(message("lables:\n  - { text: a, x: 1, y: 2 }\n")
+                .find("l.yml': lables: unknown key — did you mean labels?"),
+            std::string::npos);
+  EXPECT_NE(message("labels:\n  - { text: a, x: 1, y: 2 }\n  - { txt: b, x: 1, y: 2 }\n")
+                .find("labels[1].txt: unknown key — did you mean labels[1].text?"),
+            std::string::npos);
+  EXPECT_NE(message("labels:\n  - { text: a, x: 1, y: 2, style: { size: 3 } }\n")
+                .find("labels[0].style: unknown section"),
+            std::string::npos);
 }

@@ -313,3 +313,42 @@ TEST(MultiReferenceMap, LoadRefusesCorruptedFilesNamingTheField) {
   EXPECT_NE(loadError(variant("twoviews", twoViews)).find("observations[2].view 2 is out of range"),
             std::string::npos);
 }
+
+TEST(MultiReferenceMap, LoadNamesUnknownKeysAndNeedsNoYamlLine) {
+  const auto dir = test::freshTempDir("MultiReferenceMap_Strict");
+  const MultiReferenceMap good = makeMap();
+  good.save(dir / "ok");
+  const std::string yml = readText(dir / "ok" / "map.yml");
+  const auto variant = [&](const std::string& name, const std::string& text) {
+    std::filesystem::create_directories(dir / name);
+    std::ofstream(dir / name / "map.yml") << text;
+    for (const ReferenceView& v : good.views)
+      std::filesystem::copy_file(dir / "ok" / v.name, dir / name / v.name);
+    return dir / name;
+  };
+  // The first `from` after `after` replaced ("" : from the start; the second view begins at its
+  // name "reference_01.png").
+  const auto replaced = [&](const std::string& after, const std::string& from,
+                            const std::string& to) {
+    std::string text = yml;
+    const std::size_t at = text.find(from, text.find(after));
+    EXPECT_NE(at, std::string::npos) << from;
+    return at == std::string::npos ? text : text.replace(at, from.size(), to);
+  };
+  const auto expectError = [&](const std::filesystem::path& map, const std::string& expected) {
+    const std::string message = loadError(map);
+    EXPECT_NE(message.find(expected), std::string::npos) << message;
+  };
+  expectError(variant("top", replaced("", "point_count:", "points_count:")),
+              "map.yml': points_count: unknown key — did you mean point_count?");
+  expectError(variant("view", replaced("reference_01.png", "anchored:", "anchord:")),
+              "views[1].anchord: unknown key — did you mean views[1].anchored?");
+  expectError(variant("section", replaced("reference_01.png", "keypoints:", "keypoint:")),
+              "views[1].keypoint: unknown section — did you mean views[1].keypoints?");
+  expectError(variant("inner", replaced("reference_01.png", "count:", "cnt:")),
+              "views[1].keypoints.cnt: unknown key — did you mean views[1].keypoints.count?");
+  ASSERT_EQ(yml.rfind("%YAML:1.0\n", 0), 0u);
+  const auto bare = variant("bare", yml.substr(10));
+  EXPECT_EQ(loadError(bare), "");
+  EXPECT_EQ(MultiReferenceMap::load(bare).points.size(), good.points.size());
+}

@@ -92,3 +92,28 @@ TEST(ReferenceMap, RefusesIdenticalReferencePoses) {
   m.T_B = m.T_A;
   EXPECT_THROW(m.check(), Error);
 }
+
+TEST(ReferenceMap, LoadNamesUnknownKeysAndNeedsNoYamlLine) {
+  const auto dir = test::freshTempDir("ReferenceMap_Strict");
+  makeMap().save(dir / "ok");
+  const std::string yml = [&] {
+    std::ifstream in(dir / "ok" / "map.yml");
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+  }();
+  const auto variant = [&](const std::string& name, const std::string& text) {
+    std::filesystem::create_directories(dir / name);
+    std::ofstream(dir / name / "map.yml") << text;
+    for (const char* image : {"reference_a.png", "reference_b.png"})
+      std::filesystem::copy_file(dir / "ok" / image, dir / name / image);
+    return dir / name;
+  };
+  std::string misspelt = yml;
+  misspelt.replace(misspelt.find("pose_source:"), 12, "pose_sourse:");
+  EXPECT_NE(loadError(variant("key", misspelt))
+                .find("map.yml': pose_sourse: unknown key — did you mean pose_source?"),
+            std::string::npos);
+  ASSERT_EQ(yml.rfind("%YAML:1.0\n", 0), 0u);
+  EXPECT_EQ(loadError(variant("bare", yml.substr(10))), "");
+}

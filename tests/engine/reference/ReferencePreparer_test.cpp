@@ -185,3 +185,28 @@ TEST(ReferencePreparerParams, CheckNamesTheFieldAndYamlRoundTrips) {
   EXPECT_NE(bad.find("bad.yml"), std::string::npos) << bad;
   EXPECT_NE(bad.find("matching.min_depth_m"), std::string::npos) << bad;
 }
+
+TEST(ReferencePreparerParams, UnknownKeysNameTheNearestAndTheYamlLineIsOptional) {
+  const auto dir = test::freshTempDir("ReferencePreparerParams_strict");
+  const auto load = [&](const std::string& body) {
+    std::ofstream(dir / "p.yml") << body;
+    return errorOf([&] { ReferencePreparerParams::load(dir / "p.yml"); });
+  };
+  EXPECT_NE(load("preparation:\n  min_baseline: 0.1\n")
+                .find("preparation.min_baseline: unknown key — did you mean "
+                      "preparation.min_baseline_m?"),
+            std::string::npos);
+  EXPECT_NE(load("matchin:\n  min_score: 0.5\n")
+                .find("matchin: unknown section — did you mean matching?"),
+            std::string::npos);
+  // The key the matcher reads but did not write before is known too.
+  EXPECT_EQ(load("matching:\n  max_peak_offset_px: 2\n"), "(no error)");
+  EXPECT_EQ(load("marker: {ambiguity_ratio: 1.7}\n"), "(no error)");
+  // A caller that reads more sections from the same file names them.
+  const cv::FileStorage extend("%YAML:1.0\nextension: {max_angle_deg: 10}\n",
+                               cv::FileStorage::READ | cv::FileStorage::MEMORY);
+  ReferencePreparerParams p;
+  EXPECT_NE(errorOf([&] { p.read(extend.root()); }).find("extension: unknown section"),
+            std::string::npos);
+  EXPECT_EQ(errorOf([&] { p.read(extend.root(), {"extension"}); }), "(no error)");
+}

@@ -1,0 +1,50 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets of tests/fuzz (clang, AddressSanitizer + UndefinedBehaviorSanitizer,
+# own build folder) and runs each for SECONDS (default 60) from its seed corpus in
+# tests/fuzz/corpus/<target>/. Prints the executions per target; exits 1 on any crash, hang
+# (> 1 s per input) or leak, leaving the input in $build/artifacts/<target>/.
+# Usage: scripts/fuzz.sh [SECONDS] [TARGET...]   (REFTRACK_FUZZ_BUILD_DIR, default build-fuzz)
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+seconds="${1:-60}"
+shift || true
+build="${REFTRACK_FUZZ_BUILD_DIR:-$root/build-fuzz}"
+
+if ! bash "$root/scripts/fuzz-available.sh"; then
+  bash "$root/scripts/setup.sh" --fuzz
+fi
+
+cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Fuzz -DCMAKE_C_COMPILER=clang \
+  -DCMAKE_CXX_COMPILER=clang++ -DREFTRACK_FUZZ=ON -DREFTRACK_BUILD_TESTS=OFF >/dev/null
+cmake --build "$build" --target fuzz_all -j "$(nproc)"
+
+targets=("$@")
+if [ ${#targets[@]} -eq 0 ]; then
+  for dir in "$root"/tests/fuzz/corpus/*/; do targets+=("fuzz_$(basename "$dir")"); done
+fi
+
+failed=()
+printf '%-26s %12s %10s %s\n' target executions exec/s result
+for target in "${targets[@]}"; do
+  name="${target#fuzz_}"
+  corpus="$build/corpus/$name"       # grows as the fuzzer finds new inputs; seeds stay clean
+  artifacts="$build/artifacts/$name/"
+  mkdir -p "$corpus" "$artifacts"
+  log="$build/$target.log"
+  result=ok
+  if ! ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+    "$build/tests/fuzz/$target" "$corpus" "$root/tests/fuzz/corpus/$name" \
+    -max_total_time="$seconds" -timeout=1 -rss_limit_mb=2048 -print_final_stats=1 \
+    -artifact_prefix="$artifacts" >"$log" 2>&1; then
+    result="FAILED (see $log and $artifacts)"
+    failed+=("$target")
+  fi
+  runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
+  rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log" | tail -1)
+  printf '%-26s %12s %10s %s\n' "$target" "${runs:-?}" "${rate:-?}" "$result"
+done
+
+if [ ${#failed[@]} -ne 0 ]; then
+  echo "fuzz: ${#failed[@]} target(s) failed: ${failed[*]}" >&2
+  exit 1
+fi
