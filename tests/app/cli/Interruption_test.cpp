@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "TestPaths.hpp"
+#include "app/commands/CommandTestSupport.hpp"
 #include "engine/core/TemporaryOutputs.hpp"
 #include "engine/geometry/PinholeCamera.hpp"
 
@@ -79,19 +80,6 @@ int lineCount(const fs::path& p) {
   return n;
 }
 
-int ffprobeFrames(const fs::path& file, const fs::path& dir) {
-  const fs::path out = dir / "ffprobe.txt";
-  const std::string cmd =
-      "ffprobe -v error -select_streams v:0 -count_frames -show_entries stream=nb_read_frames "
-      "-of default=nokey=1:noprint_wrappers=1 '" +
-      file.string() + "' >'" + out.string() + "' 2>&1";
-  if (std::system(cmd.c_str()) != 0) return -1;
-  std::ifstream in(out);
-  int n = -1;
-  in >> n;
-  return n;
-}
-
 // Temporary files of unfinished outputs (writeFileAtomically's ".tmp-*", the recorder's
 // ".*.recording.mp4/.txt") anywhere under `dir`.
 std::vector<std::string> leftovers(const fs::path& dir) {
@@ -104,7 +92,8 @@ std::vector<std::string> leftovers(const fs::path& dir) {
   return found;
 }
 
-// A 320x240 clip of random shapes of `frames` frames drifting slowly, its first frame as the reference.
+// A 320x240 clip of random shapes of `frames` frames drifting slowly, its first frame as the
+// reference.
 void writeClip(const fs::path& dir, int frames) {
   cv::Mat texture(480, 640, CV_8UC3, cv::Scalar::all(128));
   cv::RNG rng(7);
@@ -150,7 +139,7 @@ TEST(Interruption, TrackFinishesItsRecordingAndCsvUpToTheLastFrameOnSigint) {
   const int rows = lineCount(csv) - 1;  // minus the header
   EXPECT_GT(rows, 0);
   EXPECT_LT(rows, 3000);
-  EXPECT_EQ(ffprobeFrames(mp4, dir), rows);
+  EXPECT_EQ(test::ffprobeFrameCount(mp4, dir), rows);
   EXPECT_TRUE(leftovers(dir).empty()) << leftovers(dir).front();
 }
 

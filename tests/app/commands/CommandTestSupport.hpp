@@ -1,5 +1,6 @@
 #pragma once
-// Runs the built `reftrack` binary for end-to-end command tests: exit code plus captured output.
+// Runs the built `reftrack` binary for end-to-end command tests: exit code plus captured output;
+// counts a recorded video's frames with ffprobe.
 #include <sys/wait.h>
 
 #include <cstdlib>
@@ -33,6 +34,21 @@ inline CommandRun runReftrack(const std::string& args, const std::filesystem::pa
   r.out = slurp(outFile);
   r.err = slurp(errFile);
   return r;
+}
+
+// Frames of a video counted by decoding (ffprobe -count_frames), or -1 when ffprobe fails.
+inline int ffprobeFrameCount(const std::filesystem::path& file,
+                             const std::filesystem::path& scratch) {
+  const std::filesystem::path out = scratch / "ffprobe.txt";
+  const std::string cmd =
+      "ffprobe -v error -select_streams v:0 -count_frames -show_entries stream=nb_read_frames "
+      "-of default=nokey=1:noprint_wrappers=1 '" +
+      file.string() + "' >'" + out.string() + "' 2>&1";
+  if (std::system(cmd.c_str()) != 0) return -1;
+  std::ifstream in(out);
+  int n = -1;
+  in >> n;
+  return n;
 }
 
 }  // namespace reftrack::test

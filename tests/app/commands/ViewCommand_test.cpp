@@ -24,20 +24,6 @@ bool haveProgram(const std::string& name) {
   return std::system(("command -v " + name + " >/dev/null 2>&1").c_str()) == 0;
 }
 
-// Frames counted by decoding (ffprobe -count_frames), or -1 when ffprobe fails.
-int ffprobeFrameCount(const fs::path& file, const fs::path& scratch) {
-  const fs::path out = scratch / "ffprobe.txt";
-  const std::string cmd =
-      "ffprobe -v error -select_streams v:0 -count_frames -show_entries stream=nb_read_frames "
-      "-of default=nokey=1:noprint_wrappers=1 '" +
-      file.string() + "' >'" + out.string() + "' 2>&1";
-  if (std::system(cmd.c_str()) != 0) return -1;
-  std::ifstream in(out);
-  int n = -1;
-  in >> n;
-  return n;
-}
-
 std::string makeSequence(const fs::path& dir, const std::string& size) {
   const auto run = test::runReftrack(
       "simulate --preset handheld --frames 3 --size " + size + " --out " + (dir / "seq").string(),
@@ -64,7 +50,7 @@ TEST(ViewCommand, HeadlessRecordingHasExactlyNFrames) {
           (dir / "out.mp4").string(),
       dir);
   ASSERT_EQ(run.exitCode, 0) << run.err;
-  EXPECT_EQ(ffprobeFrameCount(dir / "out.mp4", dir), 12);
+  EXPECT_EQ(test::ffprobeFrameCount(dir / "out.mp4", dir), 12);
   EXPECT_EQ(TumTrajectory::load(dir / "out_trajectory.txt").poses.size(), 12u);
 }
 
