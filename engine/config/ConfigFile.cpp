@@ -1,8 +1,10 @@
 #include "engine/config/ConfigFile.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <fstream>
 #include <iterator>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -95,15 +97,31 @@ std::string withYamlDirective(const std::string& text) {
 cv::FileStorage openConfigText(const std::string& text, const std::string& what,
                                const std::string& invalid) {
   const std::string yaml = withYamlDirective(text);
-  // OpenCV 4.6's YAML parser never returns on some texts with a second directive, e.g.
-  // "%YAML:1.0\n---\n   r%YAML:0.0\n--\n-# " (tests/fuzz, labels and motion readers): a '%'
-  // directive is allowed only as the first line, and "%YAML" nowhere else.
+  // OpenCV 4.6's YAML parser never returns on some malformed texts (tests/fuzz): a second '%'
+  // directive line ("%YAML:1.0\n%YAlabels:\n   -\n      y: 8\n  0.\n   -\n") or a line that
+  // starts with "--" or "-#" other than the document marker "---" (e.g. "%YAML:1.0\n---\n
+  // a: 0\n--\n-# "). Neither is valid YAML: both are refused first.
   if (yaml.rfind("%YAML", 0) == 0) {
-    const std::size_t body = yaml.find('\n');
-    if (body != std::string::npos && (yaml.find("%YAML", body) != std::string::npos ||
-                                      yaml.find("\n%", body) != std::string::npos))
-      throw Error(what + " " + invalid +
-                  ": a '%' directive is allowed only as the first line (%YAML:1.0)");
+    std::size_t lineStart = yaml.find('\n');
+    for (int line = 2; lineStart != std::string::npos; ++line) {
+      ++lineStart;
+      const std::size_t end = std::min(yaml.find('\n', lineStart), yaml.size());
+      const std::string_view row(yaml.data() + lineStart, end - lineStart);
+      const std::size_t first = row.find_first_not_of(' ');
+      const auto refuse = [&](const std::string& why) {
+        // The line in the user's file: without the directive we added, one less.
+        const int userLine = yaml.size() == text.size() ? line : line - 1;
+        throw Error(what + " " + invalid + ": line " + std::to_string(userLine) + ": " + why);
+      };
+      if (first != std::string_view::npos) {
+        const std::string_view rest = row.substr(first);
+        if (rest[0] == '%') refuse("a '%' directive is allowed only as the first line");
+        if (rest[0] == '-' && rest.size() > 1 && (rest[1] == '-' || rest[1] == '#') &&
+            !(first == 0 && rest.substr(0, 3) == "---"))
+          refuse("a line may not start with \"--\" or \"-#\" (only \"---\" opens a document)");
+      }
+      lineStart = end < yaml.size() ? end : std::string::npos;
+    }
   }
   cv::FileStorage fs;
   try {
