@@ -99,8 +99,9 @@ cv::FileStorage openConfigText(const std::string& text, const std::string& what,
   const std::string yaml = withYamlDirective(text);
   // OpenCV 4.6's YAML parser never returns on some malformed texts (tests/fuzz): a second '%'
   // directive line ("%YAML:1.0\n%YAlabels:\n   -\n      y: 8\n  0.\n   -\n") or a line that
-  // starts with "--" or "-#" other than the document marker "---" (e.g. "%YAML:1.0\n---\n
-  // a: 0\n--\n-# "). Neither is valid YAML: both are refused first.
+  // starts with '-' but is neither a sequence item, a negative number nor the document marker
+  // "---" ("%YAML:1.0\n---\n   a: 0\n--\n-# ", "%YAML:1.0\n -y\nl:\n  -y\n"). Such lines are
+  // refused first.
   if (yaml.rfind("%YAML", 0) == 0) {
     std::size_t lineStart = yaml.find('\n');
     for (int line = 2; lineStart != std::string::npos; ++line) {
@@ -116,9 +117,13 @@ cv::FileStorage openConfigText(const std::string& text, const std::string& what,
       if (first != std::string_view::npos) {
         const std::string_view rest = row.substr(first);
         if (rest[0] == '%') refuse("a '%' directive is allowed only as the first line");
-        if (rest[0] == '-' && rest.size() > 1 && (rest[1] == '-' || rest[1] == '#') &&
-            !(first == 0 && rest.substr(0, 3) == "---"))
-          refuse("a line may not start with \"--\" or \"-#\" (only \"---\" opens a document)");
+        const bool numberOrItem = rest.size() == 1 || rest[1] == ' ' || rest[1] == '\r' ||
+                                  rest[1] == '.' ||
+                                  std::isdigit(static_cast<unsigned char>(rest[1]));
+        if (rest[0] == '-' && !numberOrItem && !(first == 0 && rest.substr(0, 3) == "---"))
+          refuse(
+              "a line starting with '-' must be a sequence item (\"- x\"), a negative number or "
+              "the document marker \"---\"");
       }
       lineStart = end < yaml.size() ? end : std::string::npos;
     }

@@ -111,10 +111,11 @@ TEST(ConfigFile, ParserFailuresAndANonMapRootAreReftrackErrors) {
 }
 
 TEST(ConfigFile, TextsOnWhichOpenCvsParserLoopsAreRefusedFirst) {
-  // Both found by tests/fuzz: OpenCV 4.6's parser never returned on them (motion and labels).
+  // Found by tests/fuzz: OpenCV 4.6's parser never returned on these (motion and labels).
   const std::string motion = "%YAML:1.0\n---\n# opencv-ix\n   r%YAML:0.0\n--\n-# ";
   const std::string labels = "%YA--\xff labels:\n   -\n      text: To\n";
-  for (const std::string& text : {motion, labels}) {
+  const std::string dashes = " -y\nl:\n  -y\n";
+  for (const std::string& text : {motion, labels, dashes}) {
     const std::string message = errorMessage([&] { openConfigText(text, "f"); });
     EXPECT_NE(message.find("f is not valid OpenCV YAML/XML: line "), std::string::npos) << message;
   }
