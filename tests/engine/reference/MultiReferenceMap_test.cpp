@@ -81,6 +81,17 @@ std::string readText(const std::filesystem::path& file) {
   return ss.str();
 }
 
+// A copy of the map saved in dir/ok as dir/name with `text` as its map.yml.
+std::filesystem::path writeMapVariant(const std::filesystem::path& dir,
+                                      const MultiReferenceMap& good, const std::string& name,
+                                      const std::string& text) {
+  std::filesystem::create_directories(dir / name);
+  std::ofstream(dir / name / "map.yml") << text;
+  for (const ReferenceView& v : good.views)
+    std::filesystem::copy_file(dir / "ok" / v.name, dir / name / v.name);
+  return dir / name;
+}
+
 }  // namespace
 
 TEST(MultiReferenceMap, RoundTripsEveryFieldExactly) {
@@ -257,11 +268,7 @@ TEST(MultiReferenceMap, LoadRefusesCorruptedFilesNamingTheField) {
   good.save(dir / "ok");
   const std::string yml = readText(dir / "ok" / "map.yml");
   const auto variant = [&](const std::string& name, const std::string& text) {
-    std::filesystem::create_directories(dir / name);
-    std::ofstream(dir / name / "map.yml") << text;
-    for (const ReferenceView& v : good.views)
-      std::filesystem::copy_file(dir / "ok" / v.name, dir / name / v.name);
-    return dir / name;
+    return writeMapVariant(dir, good, name, text);
   };
   const auto replaced = [&](const std::string& from, const std::string& to) {
     std::string text = yml;
@@ -320,11 +327,7 @@ TEST(MultiReferenceMap, LoadNamesUnknownKeysAndNeedsNoYamlLine) {
   good.save(dir / "ok");
   const std::string yml = readText(dir / "ok" / "map.yml");
   const auto variant = [&](const std::string& name, const std::string& text) {
-    std::filesystem::create_directories(dir / name);
-    std::ofstream(dir / name / "map.yml") << text;
-    for (const ReferenceView& v : good.views)
-      std::filesystem::copy_file(dir / "ok" / v.name, dir / name / v.name);
-    return dir / name;
+    return writeMapVariant(dir, good, name, text);
   };
   // The first `from` after `after` replaced ("" : from the start; the second view begins at its
   // name "reference_01.png").
