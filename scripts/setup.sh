@@ -16,6 +16,7 @@ PACKAGES=(
   libtinyobjloader-dev libcli11-dev libgtest-dev
   xvfb xauth                            # window tests on a headless machine
   ffmpeg                                # ffprobe checks recorded MP4s; video codecs
+  libavformat-dev libavcodec-dev libswscale-dev libavutil-dev  # the recorder's fragmented MP4
   ccache                                # faster rebuilds
 )
 if [ "${1:-}" = "--fuzz" ]; then

@@ -1,5 +1,6 @@
 #include "app/viewer/SoakMonitor.hpp"
 
+#include <malloc.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -18,6 +19,11 @@ std::optional<double> residentMemoryMiB() {
   const long pageBytes = sysconf(_SC_PAGESIZE);
   if (pageBytes <= 0) return std::nullopt;
   return static_cast<double>(residentPages) * static_cast<double>(pageBytes) / (1024.0 * 1024.0);
+}
+
+double heapInUseMiB() {
+  const struct mallinfo2 m = mallinfo2();
+  return static_cast<double>(m.uordblks + m.hblkhd) / (1024.0 * 1024.0);
 }
 
 double processCpuSeconds() {
@@ -48,15 +54,18 @@ void SoakMonitor::frameDone() {
   SoakSample s;
   s.frames = frames_;
   s.residentMiB = residentMemoryMiB().value_or(0.0);
+  s.heapInUseMiB = heapInUseMiB();
   s.framesPerSecond = seconds > 0 ? interval_ / seconds : 0.0;
   s.cpuMsPerFrame = 1000.0 * cpuSeconds / interval_;
   samples_.push_back(s);
   if (out_) {
     char line[200];
-    std::snprintf(line, sizeof line,
-                  "soak: frame %7d  resident %8.1f MiB  rate %7.1f fr/s  cpu %7.2f ms/fr%s\n",
-                  s.frames, s.residentMiB, s.framesPerSecond, s.cpuMsPerFrame,
-                  s.frames <= warmup_ ? "  (warm-up)" : "");
+    std::snprintf(
+        line, sizeof line,
+        "soak: frame %7d  resident %8.1f MiB  heap in use %7.1f MiB  rate %7.1f fr/s  cpu "
+        "%7.2f ms/fr%s\n",
+        s.frames, s.residentMiB, s.heapInUseMiB, s.framesPerSecond, s.cpuMsPerFrame,
+        s.frames <= warmup_ ? "  (warm-up)" : "");
     *out_ << line << std::flush;
   }
 }
@@ -74,6 +83,7 @@ SoakSummary SoakMonitor::summary() const {
   r.residentAfterWarmupMiB = first->residentMiB;
   r.residentEndMiB = samples_.back().residentMiB;
   r.growthMiB = r.residentEndMiB - r.residentAfterWarmupMiB;
+  r.heapGrowthMiB = samples_.back().heapInUseMiB - first->heapInUseMiB;
   for (auto it = first; it != samples_.end(); ++it)
     r.peakMiB = std::max(r.peakMiB, it->residentMiB);
   r.firstRate = first->framesPerSecond;
@@ -94,10 +104,11 @@ void printSoakSummary(std::ostream& out, const SoakSummary& s) {
   char line[400];
   std::snprintf(line, sizeof line,
                 "soak: memory after warm-up %.1f MiB, end %.1f MiB (growth %+.2f MiB, peak %.1f "
-                "MiB); rate first %.1f fr/s, last %.1f fr/s (ratio %.3f); cpu first %.2f ms/fr, "
+                "MiB; heap in use %+.2f MiB); rate first %.1f fr/s, last %.1f fr/s (ratio %.3f); "
+                "cpu first %.2f ms/fr, "
                 "last %.2f ms/fr (ratio %.3f)\n",
-                s.residentAfterWarmupMiB, s.residentEndMiB, s.growthMiB, s.peakMiB, s.firstRate,
-                s.lastRate, s.rateRatio, s.firstCpuMs, s.lastCpuMs, s.cpuRatio);
+                s.residentAfterWarmupMiB, s.residentEndMiB, s.growthMiB, s.peakMiB, s.heapGrowthMiB,
+                s.firstRate, s.lastRate, s.rateRatio, s.firstCpuMs, s.lastCpuMs, s.cpuRatio);
   out << line;
 }
 

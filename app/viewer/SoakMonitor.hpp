@@ -12,12 +12,17 @@ namespace reftrack::app {
 
 // Resident set size of this process in MiB (Linux /proc/self/statm); nullopt where unavailable.
 std::optional<double> residentMemoryMiB();
+// Bytes the C heap holds for live allocations (glibc mallinfo2: in-use chunks of every arena plus
+// mmapped blocks), in MiB: unlike the resident size, unaffected by freed memory the allocator
+// keeps.
+double heapInUseMiB();
 // CPU time used by this process so far (all threads), in seconds.
 double processCpuSeconds();
 
 struct SoakSample {
   int frames = 0;              // frames processed when sampled
   double residentMiB = 0;      // resident memory then
+  double heapInUseMiB = 0;     // live C-heap allocations then (see heapInUseMiB())
   double framesPerSecond = 0;  // rate over the interval that ended here (wall clock)
   double cpuMsPerFrame = 0;    // process CPU time per frame over that interval (all threads):
                                // unlike the rate, unaffected by other processes' load
@@ -28,6 +33,7 @@ struct SoakSummary {
   int warmupFrames = 0;
   // Resident memory at the first sample at or after warm-up, and at the last; growth = end - that.
   double residentAfterWarmupMiB = 0, residentEndMiB = 0, growthMiB = 0, peakMiB = 0;
+  double heapGrowthMiB = 0;  // live C-heap allocations, end - first sample after warm-up
   // Rate of the first interval after warm-up and of the last interval; ratio = last / first.
   double firstRate = 0, lastRate = 0, rateRatio = 0;
   double firstCpuMs = 0, lastCpuMs = 0, cpuRatio = 0;  // the same for CPU ms per frame

@@ -1,6 +1,7 @@
 #include "app/viewer/VideoRecorder.hpp"
 
 #include <cmath>
+#include <opencv2/videoio.hpp>
 
 #include "engine/core/Error.hpp"
 
@@ -21,18 +22,17 @@ VideoRecorder::VideoRecorder(const fs::path& mp4, double fps, cv::Size frameSize
     throw Error(where + ": folder '" + folder.string() + "' does not exist");
   if (!(std::isfinite(fps) && fps > 0)) throw Error(where + ": frame rate must be positive");
   if (frameSize.width <= 0 || frameSize.height <= 0) throw Error(where + ": empty frame size");
-  // The temporary keeps the .mp4 extension: the FFmpeg backend picks the container by it.
   std::string partialName = mp4.stem().string();
   partialName.insert(partialName.begin(), '.');  // hidden; built so to dodge GCC 12 -Wrestrict
   partialName.append(".recording.mp4");
   partial_ = folder / partialName;
   tracked_.emplace(partial_);
-  writer_.open(partial_.string(), cv::CAP_FFMPEG, cv::VideoWriter::fourcc('m', 'p', '4', 'v'), fps,
-               frameSize, true);
-  if (!writer_.isOpened()) {
+  try {
+    writer_.emplace(partial_, fps, frameSize);
+  } catch (const Error& e) {
     std::error_code ec;
     fs::remove(partial_, ec);
-    throw Error(where + ": the MP4 writer cannot be opened (is the folder writable?)");
+    throw Error(where + ": " + e.what());
   }
   std::string trajectoryName = trajectory_.stem().string();
   trajectoryName.insert(trajectoryName.begin(), '.');
@@ -42,7 +42,7 @@ VideoRecorder::VideoRecorder(const fs::path& mp4, double fps, cv::Size frameSize
   trajectoryOut_.open(partialTrajectory_);
   TumTrajectory::writeHeader(trajectoryOut_);
   if (!trajectoryOut_) {
-    writer_.release();
+    writer_.reset();
     std::error_code ec;
     fs::remove(partial_, ec);
     fs::remove(partialTrajectory_, ec);
@@ -52,7 +52,7 @@ VideoRecorder::VideoRecorder(const fs::path& mp4, double fps, cv::Size frameSize
 
 VideoRecorder::~VideoRecorder() {
   if (closed_) return;
-  writer_.release();
+  writer_.reset();
   trajectoryOut_.close();
   std::error_code ec;
   fs::remove(partial_, ec);
@@ -66,7 +66,12 @@ void VideoRecorder::write(const cv::Mat& bgr, double timestamp,
     throw Error("recording '" + mp4_.string() + "': frame " + std::to_string(frames_) + " is " +
                 std::to_string(bgr.cols) + "x" + std::to_string(bgr.rows) + " but the video is " +
                 std::to_string(size_.width) + "x" + std::to_string(size_.height) + " BGR");
-  writer_.write(bgr);
+  // A write error (a full disk) stops the video but not the caller's run; close() reports it.
+  if (videoError_.empty()) try {
+      writer_->write(bgr);
+    } catch (const Error& e) {
+      videoError_ = e.what();
+    }
   if (worldToCamera) {
     TumTrajectory::writeLine(trajectoryOut_, {timestamp, *worldToCamera});
     trajectoryOut_.flush();  // a crash keeps the lines of the frames already in the MP4
@@ -76,14 +81,24 @@ void VideoRecorder::write(const cv::Mat& bgr, double timestamp,
 
 void VideoRecorder::close() {
   if (closed_) return;
-  writer_.release();
-  trajectoryOut_.close();
   closed_ = true;
   const auto discard = [&] {
     std::error_code ec;
     fs::remove(partial_, ec);
     fs::remove(partialTrajectory_, ec);
   };
+  std::string videoError = videoError_;
+  if (videoError.empty()) try {
+      writer_->finish();
+    } catch (const Error& e) {
+      videoError = e.what();
+    }
+  writer_.reset();
+  trajectoryOut_.close();
+  if (!videoError.empty()) {
+    discard();
+    throw Error("recording '" + mp4_.string() + "' could not be finished: " + videoError);
+  }
   if (frames_ == 0) {
     discard();
     throw Error("recording '" + mp4_.string() + "' holds no frame; nothing written");
@@ -93,9 +108,8 @@ void VideoRecorder::close() {
     throw Error("recording '" + mp4_.string() + "': the trajectory '" + trajectory_.string() +
                 "' could not be written (is the disk full?)");
   }
-  // cv::VideoWriter reports no write error (a full disk, a file-size limit): the finished file
-  // must open and hold every frame before it takes the final name. Reading the container's
-  // frame count costs no decoding.
+  // Beside the writer's own error checks, the finished file must open and hold every frame
+  // before it takes the final name. Reading the container's frame count costs no decoding.
   {
     cv::VideoCapture check(partial_.string(), cv::CAP_FFMPEG);
     const double stored = check.isOpened() ? check.get(cv::CAP_PROP_FRAME_COUNT) : -1.0;

@@ -1,6 +1,6 @@
 #pragma once
-// VideoRecorder: writes composited frames to an MP4 (cv::VideoWriter, 'mp4v') at the source frame
-// rate, one output frame per call, and the trajectory used beside it as TUM
+// VideoRecorder: writes composited frames to a fragmented MP4 (FragmentedMp4Writer) at the source
+// frame rate, one output frame per call, and the trajectory used beside it as TUM
 // (`<stem>_trajectory.txt`, tracked frames only, streamed to disk line by line so memory stays
 // flat over long recordings). Both are written under temporary names and
 // renamed by close(), so an error or an abandoned recording (destroyed without close()) leaves
@@ -8,9 +8,10 @@
 #include <filesystem>
 #include <fstream>
 #include <opencv2/core.hpp>
-#include <opencv2/videoio.hpp>
 #include <optional>
+#include <string>
 
+#include "app/viewer/FragmentedMp4Writer.hpp"
 #include "engine/core/TemporaryOutputs.hpp"
 #include "engine/geometry/TumTrajectory.hpp"
 
@@ -44,7 +45,8 @@ class VideoRecorder {
   std::ofstream trajectoryOut_;
   std::optional<TemporaryOutput> trackedTrajectory_;
   cv::Size size_;
-  cv::VideoWriter writer_;
+  std::optional<FragmentedMp4Writer> writer_;
+  std::string videoError_;  // the first write error; the video stops there
   int frames_ = 0;
   bool closed_ = false;
 };
