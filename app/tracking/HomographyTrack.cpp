@@ -1,4 +1,4 @@
-#include "app/homography/HomographyTrackRun.hpp"
+#include "app/tracking/HomographyTrack.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -8,10 +8,10 @@
 
 #include "app/cli/Interruption.hpp"
 #include "app/cli/ProgressBar.hpp"
-#include "app/homography/HomographyOverlay.hpp"
-#include "app/homography/HomographyTrackCsv.hpp"
 #include "app/sources/FrameSourceFactory.hpp"
 #include "app/sources/InputCamera.hpp"
+#include "app/tracking/HomographyOverlay.hpp"
+#include "app/tracking/HomographyTrackCsv.hpp"
 #include "app/viewer/HomographyFrameTracker.hpp"
 #include "app/viewer/VideoRecorder.hpp"
 #include "engine/core/Error.hpp"

@@ -1,4 +1,4 @@
-#include "app/homography/OpenCvFeatureBaseline.hpp"
+#include "app/research/baselines/OpenCvFeatureBaseline.hpp"
 
 #include <cmath>
 #include <opencv2/calib3d.hpp>

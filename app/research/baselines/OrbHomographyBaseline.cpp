@@ -1,4 +1,4 @@
-#include "app/homography/OrbHomographyBaseline.hpp"
+#include "app/research/baselines/OrbHomographyBaseline.hpp"
 
 #include <cmath>
 #include <opencv2/calib3d.hpp>

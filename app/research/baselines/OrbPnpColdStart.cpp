@@ -1,4 +1,4 @@
-#include "app/baselines/OrbPnpColdStart.hpp"
+#include "app/research/baselines/OrbPnpColdStart.hpp"
 
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core/eigen.hpp>

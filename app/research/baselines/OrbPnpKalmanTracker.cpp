@@ -1,4 +1,4 @@
-#include "app/baselines/OrbPnpKalmanTracker.hpp"
+#include "app/research/baselines/OrbPnpKalmanTracker.hpp"
 
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>

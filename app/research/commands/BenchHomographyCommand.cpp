@@ -10,7 +10,7 @@
 
 #include "app/cli/ImageSizeValidator.hpp"
 #include "app/commands/Commands.hpp"
-#include "app/homography/HomographyBenchmark.hpp"
+#include "app/research/homography/HomographyBenchmark.hpp"
 #include "app/simulator/SimulationOptions.hpp"
 #include "engine/core/Error.hpp"
 #include "render/context/GlContext.hpp"
@@ -111,7 +111,7 @@ CommandRegistration registerBenchHomographyCommand(CLI::App& parent) {
       }};
 }
 
-const CommandRegistrar registrar(85, registerBenchHomographyCommand);
+const CommandRegistrar registrar(85, registerBenchHomographyCommand, CommandGroup::Research);
 
 }  // namespace
 

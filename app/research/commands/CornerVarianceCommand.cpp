@@ -7,8 +7,8 @@
 #include <iostream>
 
 #include "app/commands/Commands.hpp"
-#include "app/experiments/CornerAccuracyExperiment.hpp"
 #include "app/plot/PlotCanvas.hpp"
+#include "app/research/corners/CornerAccuracyExperiment.hpp"
 
 namespace reftrack::app {
 
@@ -57,7 +57,7 @@ CommandRegistration registerCornerVarianceCommand(CLI::App& parent) {
           }};
 }
 
-const CommandRegistrar registrar(70, registerCornerVarianceCommand);
+const CommandRegistrar registrar(70, registerCornerVarianceCommand, CommandGroup::Research);
 
 }  // namespace
 

@@ -6,8 +6,8 @@
 #include <memory>
 
 #include "app/commands/Commands.hpp"
-#include "app/experiments/CorrelationDecayExperiment.hpp"
 #include "app/plot/PlotCanvas.hpp"
+#include "app/research/correlation/CorrelationDecayExperiment.hpp"
 #include "render/context/GlContext.hpp"
 
 namespace reftrack::app {
@@ -57,7 +57,7 @@ CommandRegistration registerExperimentCorrelationCommand(CLI::App& parent) {
           }};
 }
 
-const CommandRegistrar registrar(62, registerExperimentCorrelationCommand);
+const CommandRegistrar registrar(62, registerExperimentCorrelationCommand, CommandGroup::Research);
 
 }  // namespace
 

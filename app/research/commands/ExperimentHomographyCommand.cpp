@@ -18,11 +18,11 @@
 #include "app/cli/DistortionOption.hpp"
 #include "app/cli/ImageSizeValidator.hpp"
 #include "app/commands/Commands.hpp"
-#include "app/homography/ColdRegistrationExperiment.hpp"
-#include "app/homography/HomographyPairsExperiment.hpp"
-#include "app/homography/RotationSweepExperiment.hpp"
-#include "app/homography/StaticHomographyExperiment.hpp"
 #include "app/plot/PlotCanvas.hpp"
+#include "app/research/homography/ColdRegistrationExperiment.hpp"
+#include "app/research/homography/HomographyPairsExperiment.hpp"
+#include "app/research/homography/RotationSweepExperiment.hpp"
+#include "app/research/homography/StaticHomographyExperiment.hpp"
 #include "app/simulator/SimulationOptions.hpp"
 #include "render/context/GlContext.hpp"
 
@@ -346,7 +346,7 @@ CommandRegistration registerExperimentHomographyCommand(CLI::App& parent) {
           }};
 }
 
-const CommandRegistrar registrar(65, registerExperimentHomographyCommand);
+const CommandRegistrar registrar(65, registerExperimentHomographyCommand, CommandGroup::Research);
 
 }  // namespace
 

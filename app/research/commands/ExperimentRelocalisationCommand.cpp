@@ -13,9 +13,9 @@
 #include "app/cli/ImageSizeValidator.hpp"
 #include "app/cli/ProgressBar.hpp"
 #include "app/commands/Commands.hpp"
-#include "app/experiments/RelocalisationExperiment.hpp"
-#include "app/experiments/SimulatedSequence.hpp"
-#include "app/experiments/SixDofRuns.hpp"
+#include "app/research/relocalisation/RelocalisationExperiment.hpp"
+#include "app/research/sixdof/SimulatedSequence.hpp"
+#include "app/research/sixdof/SixDofRuns.hpp"
 #include "app/simulator/CameraPath.hpp"
 #include "app/simulator/SceneSimulator.hpp"
 #include "engine/core/AtomicFile.hpp"
@@ -228,7 +228,8 @@ CommandRegistration registerExperimentRelocalisationCommand(CLI::App& parent) {
           }};
 }
 
-const CommandRegistrar registrar(62, registerExperimentRelocalisationCommand);
+const CommandRegistrar registrar(62, registerExperimentRelocalisationCommand,
+                                 CommandGroup::Research);
 
 }  // namespace
 

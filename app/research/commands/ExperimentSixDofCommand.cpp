@@ -13,9 +13,9 @@
 #include "app/cli/DistortionOption.hpp"
 #include "app/cli/ImageSizeValidator.hpp"
 #include "app/commands/Commands.hpp"
-#include "app/experiments/EffectAblation.hpp"
-#include "app/experiments/SixDofPlots.hpp"
-#include "app/experiments/SixDofRuns.hpp"
+#include "app/research/sixdof/EffectAblation.hpp"
+#include "app/research/sixdof/SixDofPlots.hpp"
+#include "app/research/sixdof/SixDofRuns.hpp"
 #include "app/simulator/SceneSimulator.hpp"
 #include "engine/estimation/MotionModelFitter.hpp"
 #include "render/context/GlContext.hpp"
@@ -246,7 +246,7 @@ CommandRegistration registerExperimentSixDofCommand(CLI::App& parent) {
       }};
 }
 
-const CommandRegistrar registrar(60, registerExperimentSixDofCommand);
+const CommandRegistrar registrar(60, registerExperimentSixDofCommand, CommandGroup::Research);
 
 }  // namespace
 

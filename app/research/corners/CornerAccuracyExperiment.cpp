@@ -1,4 +1,4 @@
-#include "app/experiments/CornerAccuracyExperiment.hpp"
+#include "app/research/corners/CornerAccuracyExperiment.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "app/experiments/CorrelationDecayExperiment.hpp"
+#include "app/research/correlation/CorrelationDecayExperiment.hpp"
 
 #include <cmath>
 #include <opencv2/imgproc.hpp>

@@ -6,7 +6,7 @@
 // warped one stays high.
 #include <vector>
 
-#include "app/experiments/SimulatedSequence.hpp"
+#include "app/research/sixdof/SimulatedSequence.hpp"
 
 namespace reftrack::app {
 

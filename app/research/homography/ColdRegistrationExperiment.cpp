@@ -1,4 +1,4 @@
-#include "app/homography/ColdRegistrationExperiment.hpp"
+#include "app/research/homography/ColdRegistrationExperiment.hpp"
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -9,7 +9,7 @@
 #include <random>
 
 #include "app/cli/ProgressBar.hpp"
-#include "app/homography/HomographyGroundTruth.hpp"
+#include "app/research/homography/HomographyGroundTruth.hpp"
 #include "app/simulator/ProceduralTexture.hpp"
 #include "app/simulator/SensorNoise.hpp"
 #include "engine/core/Error.hpp"

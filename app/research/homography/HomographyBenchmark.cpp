@@ -1,4 +1,4 @@
-#include "app/homography/HomographyBenchmark.hpp"
+#include "app/research/homography/HomographyBenchmark.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -6,8 +6,8 @@
 #include <limits>
 
 #include "app/cli/ProgressBar.hpp"
-#include "app/homography/HomographyGroundTruth.hpp"
-#include "app/homography/OrbHomographyBaseline.hpp"
+#include "app/research/baselines/OrbHomographyBaseline.hpp"
+#include "app/research/homography/HomographyGroundTruth.hpp"
 #include "app/simulator/SceneSimulator.hpp"
 #include "engine/core/Error.hpp"
 #include "engine/features/CornerDetector.hpp"

@@ -1,4 +1,4 @@
-#include "app/homography/HomographyGroundTruth.hpp"
+#include "app/research/homography/HomographyGroundTruth.hpp"
 
 #include <Eigen/LU>
 #include <cmath>

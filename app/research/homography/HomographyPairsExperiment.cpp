@@ -1,4 +1,4 @@
-#include "app/homography/HomographyPairsExperiment.hpp"
+#include "app/research/homography/HomographyPairsExperiment.hpp"
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -10,8 +10,8 @@
 #include <optional>
 
 #include "app/cli/ProgressBar.hpp"
-#include "app/homography/HomographyGroundTruth.hpp"
-#include "app/homography/OpenCvFeatureBaseline.hpp"
+#include "app/research/baselines/OpenCvFeatureBaseline.hpp"
+#include "app/research/homography/HomographyGroundTruth.hpp"
 #include "app/simulator/SensorNoise.hpp"  // mixSeed
 #include "engine/core/Error.hpp"
 #include "engine/homography/HomographyTracker.hpp"

@@ -1,4 +1,4 @@
-#include "app/homography/RotationSweepExperiment.hpp"
+#include "app/research/homography/RotationSweepExperiment.hpp"
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -7,7 +7,7 @@
 #include <limits>
 
 #include "app/cli/ProgressBar.hpp"
-#include "app/homography/HomographyGroundTruth.hpp"
+#include "app/research/homography/HomographyGroundTruth.hpp"
 #include "app/simulator/CameraEffectsPipeline.hpp"
 #include "app/simulator/SceneSimulator.hpp"
 #include "app/simulator/SensorNoise.hpp"

@@ -1,10 +1,10 @@
-#include "app/experiments/RelocalisationBenchmark.hpp"
+#include "app/research/relocalisation/RelocalisationBenchmark.hpp"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 
-#include "app/baselines/OrbPnpColdStart.hpp"
+#include "app/research/baselines/OrbPnpColdStart.hpp"
 #include "engine/core/Error.hpp"
 #include "engine/core/ThreadCpuClock.hpp"
 #include "engine/relocalisation/Relocaliser.hpp"

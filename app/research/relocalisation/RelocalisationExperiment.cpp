@@ -1,12 +1,12 @@
-#include "app/experiments/RelocalisationExperiment.hpp"
+#include "app/research/relocalisation/RelocalisationExperiment.hpp"
 
 #include <chrono>
 #include <limits>
 #include <opencv2/imgproc.hpp>
 
-#include "app/baselines/OrbPnpColdStart.hpp"
 #include "app/cli/ProgressBar.hpp"
-#include "app/experiments/SixDofRuns.hpp"
+#include "app/research/baselines/OrbPnpColdStart.hpp"
+#include "app/research/sixdof/SixDofRuns.hpp"
 #include "app/simulator/SensorNoise.hpp"
 #include "engine/core/Error.hpp"
 #include "engine/core/ThreadCpuClock.hpp"

@@ -1,4 +1,4 @@
-#include "app/experiments/EffectAblation.hpp"
+#include "app/research/sixdof/EffectAblation.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -7,8 +7,8 @@
 #include <set>
 
 #include "app/cli/ProgressBar.hpp"
-#include "app/experiments/SimulatedSequence.hpp"
-#include "app/experiments/SixDofRuns.hpp"
+#include "app/research/sixdof/SimulatedSequence.hpp"
+#include "app/research/sixdof/SixDofRuns.hpp"
 #include "app/simulator/CameraEffectsPipeline.hpp"
 #include "app/simulator/SceneSimulator.hpp"
 #include "engine/evaluation/TrajectoryEvaluator.hpp"

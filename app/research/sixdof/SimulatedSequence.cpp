@@ -1,4 +1,4 @@
-#include "app/experiments/SimulatedSequence.hpp"
+#include "app/research/sixdof/SimulatedSequence.hpp"
 
 #include <cstdio>
 #include <opencv2/imgcodecs.hpp>

@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <vector>
 
-#include "app/experiments/SixDofRuns.hpp"
+#include "app/research/sixdof/SixDofRuns.hpp"
 
 namespace reftrack::app {
 

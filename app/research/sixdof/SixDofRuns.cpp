@@ -1,11 +1,11 @@
-#include "app/experiments/SixDofRuns.hpp"
+#include "app/research/sixdof/SixDofRuns.hpp"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 
-#include "app/baselines/OrbPnpKalmanTracker.hpp"
 #include "app/cli/ProgressBar.hpp"
+#include "app/research/baselines/OrbPnpKalmanTracker.hpp"
 #include "engine/core/Error.hpp"
 #include "engine/tracking/MultiReferenceTracker.hpp"
 #include "engine/tracking/PoseTracker.hpp"

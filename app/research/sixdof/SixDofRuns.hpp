@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "app/experiments/SimulatedSequence.hpp"
+#include "app/research/sixdof/SimulatedSequence.hpp"
 #include "engine/config/TrackerParams.hpp"
 #include "engine/estimation/MotionModel.hpp"
 #include "engine/evaluation/TrajectoryEvaluator.hpp"

@@ -1,4 +1,4 @@
-#include "app/homography/HomographyOverlay.hpp"
+#include "app/tracking/HomographyOverlay.hpp"
 
 #include <gtest/gtest.h>
 

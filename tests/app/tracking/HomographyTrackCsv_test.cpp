@@ -1,4 +1,4 @@
-#include "app/homography/HomographyTrackCsv.hpp"
+#include "app/tracking/HomographyTrackCsv.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "app/homography/HomographyTrackRun.hpp"
+#include "app/tracking/HomographyTrack.hpp"
 
 #include <gtest/gtest.h>
 
@@ -38,8 +38,8 @@ std::filesystem::path writeStaticSequence(const std::string& name) {
 
 }  // namespace
 
-TEST(HomographyTrackRun, WritesOneCsvRowPerFrameAndARecording) {
-  const auto dir = writeStaticSequence("HomographyTrackRun_ok");
+TEST(HomographyTrack, WritesOneCsvRowPerFrameAndARecording) {
+  const auto dir = writeStaticSequence("HomographyTrack_ok");
   HomographyTrackOptions o;
   o.reference = dir / "reference.png";
   o.input = (dir / "frames").string();
@@ -61,10 +61,10 @@ TEST(HomographyTrackRun, WritesOneCsvRowPerFrameAndARecording) {
   EXPECT_EQ(runHomographyTrack(o).frames, 3);
 }
 
-TEST(HomographyTrackRun, LostFramesCarryTheirReasonInTheCsv) {
+TEST(HomographyTrack, LostFramesCarryTheirReasonInTheCsv) {
   // Frame 3 black: lost, with the reason; the others tracked, with an empty reason (frame 4 is
   // registered cold again).
-  const auto dir = writeStaticSequence("HomographyTrackRun_reason");
+  const auto dir = writeStaticSequence("HomographyTrack_reason");
   cv::imwrite((dir / "frames" / "000003.png").string(), cv::Mat(240, 320, CV_8UC3, cv::Scalar(0)));
   HomographyTrackOptions o;
   o.reference = dir / "reference.png";
@@ -91,8 +91,8 @@ TEST(HomographyTrackRun, LostFramesCarryTheirReasonInTheCsv) {
   }
 }
 
-TEST(HomographyTrackRun, BadInputThrowsAndWritesNothing) {
-  const auto dir = writeStaticSequence("HomographyTrackRun_bad");
+TEST(HomographyTrack, BadInputThrowsAndWritesNothing) {
+  const auto dir = writeStaticSequence("HomographyTrack_bad");
   HomographyTrackOptions o;
   o.input = (dir / "frames").string();
   o.csv = dir / "track.csv";

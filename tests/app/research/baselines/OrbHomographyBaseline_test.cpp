@@ -1,8 +1,8 @@
-#include "app/homography/OrbHomographyBaseline.hpp"
+#include "app/research/baselines/OrbHomographyBaseline.hpp"
 
 #include <gtest/gtest.h>
 
-#include "app/homography/HomographyGroundTruth.hpp"
+#include "app/research/homography/HomographyGroundTruth.hpp"
 #include "engine/core/Error.hpp"
 #include "engine/features/SyntheticImages.hpp"
 

@@ -1,4 +1,4 @@
-#include "app/baselines/OrbPnpColdStart.hpp"
+#include "app/research/baselines/OrbPnpColdStart.hpp"
 
 #include <gtest/gtest.h>
 

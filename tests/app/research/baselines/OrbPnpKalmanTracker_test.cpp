@@ -1,8 +1,8 @@
-#include "app/baselines/OrbPnpKalmanTracker.hpp"
+#include "app/research/baselines/OrbPnpKalmanTracker.hpp"
 
 #include <gtest/gtest.h>
 
-#include "app/experiments/SixDofRuns.hpp"
+#include "app/research/sixdof/SixDofRuns.hpp"
 #include "render/context/GlContext.hpp"
 
 namespace reftrack::app {

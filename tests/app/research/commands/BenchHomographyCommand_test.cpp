@@ -1,7 +1,7 @@
 #include <gtest/gtest.h>
 
-#include "CommandTestSupport.hpp"
 #include "TestPaths.hpp"
+#include "app/commands/CommandTestSupport.hpp"
 
 using namespace reftrack::test;
 

@@ -1,4 +1,4 @@
-#include "app/homography/ColdRegistrationExperiment.hpp"
+#include "app/research/homography/ColdRegistrationExperiment.hpp"
 
 #include <gtest/gtest.h>
 

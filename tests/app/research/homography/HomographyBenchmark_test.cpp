@@ -1,4 +1,4 @@
-#include "app/homography/HomographyBenchmark.hpp"
+#include "app/research/homography/HomographyBenchmark.hpp"
 
 #include <gtest/gtest.h>
 

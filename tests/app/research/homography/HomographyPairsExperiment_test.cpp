@@ -1,11 +1,11 @@
-#include "app/homography/HomographyPairsExperiment.hpp"
+#include "app/research/homography/HomographyPairsExperiment.hpp"
 
 #include <gtest/gtest.h>
 
 #include <opencv2/imgcodecs.hpp>
 
 #include "TestPaths.hpp"
-#include "app/homography/HomographyGroundTruth.hpp"
+#include "app/research/homography/HomographyGroundTruth.hpp"
 #include "engine/core/Error.hpp"
 #include "engine/features/SyntheticImages.hpp"
 #include "engine/homography/HomographyDlt.hpp"

@@ -1,4 +1,4 @@
-#include "app/homography/RotationSweepExperiment.hpp"
+#include "app/research/homography/RotationSweepExperiment.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "app/homography/StaticHomographyExperiment.hpp"
+#include "app/research/homography/StaticHomographyExperiment.hpp"
 
 #include <gtest/gtest.h>
 

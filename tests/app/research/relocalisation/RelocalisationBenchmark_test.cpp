@@ -1,4 +1,4 @@
-#include "app/experiments/RelocalisationBenchmark.hpp"
+#include "app/research/relocalisation/RelocalisationBenchmark.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,11 +1,11 @@
-#include "app/experiments/RelocalisationExperiment.hpp"
+#include "app/research/relocalisation/RelocalisationExperiment.hpp"
 
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
 #include <memory>
 
-#include "app/experiments/SimulatedSequence.hpp"
+#include "app/research/sixdof/SimulatedSequence.hpp"
 #include "engine/core/Error.hpp"
 #include "engine/evaluation/TrajectoryEvaluator.hpp"
 #include "engine/tracking/MultiReferenceTracker.hpp"

@@ -1,4 +1,4 @@
-#include "app/experiments/SixDofPlots.hpp"
+#include "app/research/sixdof/SixDofPlots.hpp"
 
 #include <gtest/gtest.h>
 

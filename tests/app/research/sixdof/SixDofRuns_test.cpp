@@ -1,4 +1,4 @@
-#include "app/experiments/SixDofRuns.hpp"
+#include "app/research/sixdof/SixDofRuns.hpp"
 
 #include <gtest/gtest.h>
 
