@@ -8,10 +8,10 @@
 
 #include "app/cli/Interruption.hpp"
 #include "app/cli/ProgressBar.hpp"
-#include "app/sources/FrameSourceFactory.hpp"
 #include "app/sources/InputCamera.hpp"
 #include "app/tracking/HomographyOverlay.hpp"
 #include "app/tracking/HomographyTrackCsv.hpp"
+#include "app/tracking/TrackInput.hpp"
 #include "app/viewer/HomographyFrameTracker.hpp"
 #include "app/viewer/VideoRecorder.hpp"
 #include "engine/core/Error.hpp"
@@ -33,11 +33,8 @@ HomographyTrackSummary runHomographyTrack(const HomographyTrackOptions& o) {
   params.check();
   const AnnotationSet labels = o.labels.empty() ? AnnotationSet{} : AnnotationSet::load(o.labels);
 
-  std::unique_ptr<render::GlContext> gl;
-  if (isSimulatorInput(o.input) || !o.record.empty()) gl = render::createHeadlessContext();
-  FrameSourceOptions sourceOptions;
-  sourceOptions.simSize = reference.size();
-  std::unique_ptr<FrameSource> source = openFrameSource(o.input, sourceOptions);
+  TrackInput input(o.input, reference.size(), "the reference '" + o.reference.string() + "' is",
+                   o.maxFrames, !o.record.empty());
 
   // A calibrated camera enables the rotation-only model; without one, the overlay still needs a
   // camera of the frame size (homography mode draws no 3-D content, so any pinhole serves).
@@ -53,37 +50,17 @@ HomographyTrackSummary runHomographyTrack(const HomographyTrackOptions& o) {
   const OverlaySettings settings;
   if (!o.record.empty()) {
     overlay = std::make_unique<HomographyOverlay>();
-    recorder = std::make_unique<VideoRecorder>(o.record, source->fps(), reference.size());
+    recorder = std::make_unique<VideoRecorder>(o.record, input.source().fps(), reference.size());
   }
 
   std::vector<HomographyFrameRecord> records;
-  const int total = o.maxFrames > 0
-                        ? std::min(o.maxFrames, source->frameCount().value_or(o.maxFrames))
-                        : source->frameCount().value_or(0);
-  ProgressBar progress("track homography", static_cast<std::size_t>(std::max(total, 0)));
+  ProgressBar progress("track homography", static_cast<std::size_t>(input.expectedCount()));
   HomographyTrackSummary summary;
   std::vector<double> ms;
-  // A frame that cannot be read or used mid-stream ends the run like the end of the input, so
-  // everything written up to it is kept; the error is reported after the outputs are finished.
-  std::string streamError;
   const InterruptibleWork interruptible;  // Ctrl-C ends the loop; the outputs are then finished
-  while ((o.maxFrames < 0 || summary.frames < o.maxFrames) && !interruptRequested()) {
-    std::optional<Frame> frame;
-    try {
-      frame = source->next();
-    } catch (const Error& e) {
-      streamError = e.what();
-      break;
-    }
+  while (!interruptRequested()) {
+    const std::optional<Frame> frame = input.next();
     if (!frame) break;
-    if (frame->image.size() != reference.size()) {
-      streamError = "input '" + o.input + "' frame " + std::to_string(frame->index) + " is " +
-                    std::to_string(frame->image.cols) + "x" + std::to_string(frame->image.rows) +
-                    " but the reference '" + o.reference.string() + "' is " +
-                    std::to_string(reference.cols) + "x" + std::to_string(reference.rows);
-      if (summary.frames == 0) throw Error(streamError);
-      break;
-    }
     const auto t0 = std::chrono::steady_clock::now();
     const TrackingResult result = tracker.process(frame->image, frame->index, frame->timestamp);
     const double elapsed =
@@ -112,20 +89,12 @@ HomographyTrackSummary runHomographyTrack(const HomographyTrackOptions& o) {
     progress.advance();
   }
   progress.finish();
-  if (summary.frames == 0)
-    throw Error(streamError.empty() ? "input '" + o.input + "' gave no frames" : streamError);
+  input.requireFrames();
   // A recording that cannot be finished (full disk) must not cost the CSV.
-  std::string recordingError;
-  if (recorder) try {
-      recorder->close();
-    } catch (const Error& e) {
-      recordingError = e.what();
-    }
+  const std::string recordingError = closeRecording(recorder.get());
   if (!o.csv.empty()) writeHomographyCsv(o.csv, records);
   if (!recordingError.empty()) throw Error(recordingError);
-  if (!streamError.empty())
-    throw Error(streamError + " (outputs written up to frame " +
-                std::to_string(records.back().index) + ")");
+  input.throwIfCutShort();
   std::nth_element(ms.begin(), ms.begin() + static_cast<long>(ms.size() / 2), ms.end());
   summary.medianMs = ms[ms.size() / 2];
   return summary;

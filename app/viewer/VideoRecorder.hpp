@@ -10,6 +10,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/videoio.hpp>
 #include <optional>
+#include <string>
 
 #include "engine/core/TemporaryOutputs.hpp"
 #include "engine/geometry/TumTrajectory.hpp"
@@ -48,5 +49,10 @@ class VideoRecorder {
   int frames_ = 0;
   bool closed_ = false;
 };
+
+// Closes `recorder` (none: nothing to do) and returns the error message of a recording that
+// cannot be finished (a full disk) instead of throwing it, so the caller's other outputs are
+// still written before it reports the failure; "" on success.
+std::string closeRecording(VideoRecorder* recorder);
 
 }  // namespace reftrack::app

@@ -20,7 +20,6 @@
 #include "app/simulator/SceneSimulator.hpp"
 #include "engine/core/AtomicFile.hpp"
 #include "engine/core/Error.hpp"
-#include "engine/tracking/MultiReferenceTracker.hpp"
 #include "render/context/GlContext.hpp"
 
 namespace reftrack::app {
@@ -36,21 +35,6 @@ struct Args {
   std::filesystem::path params;
   std::filesystem::path csv = "relocalisation.csv";
 };
-
-FrameTracker trackerOn(const MultiReferenceMap& map, const TrackerParams& params) {
-  auto tracker = std::make_shared<MultiReferenceTracker>(map, params);
-  return [tracker](const cv::Mat& frame) {
-    const MultiReferenceResult r = tracker->process(frame);
-    FrameOutcome out(r.tracking.worldToCamera);
-    out.message = r.tracking.message;
-    if (r.relocalisation.attempted) {
-      out.message += " [relocaliser: " + r.relocalisation.message + "]";
-      out.relocaliseMs = r.relocalisation.locateMs;
-      out.relocaliseCpuMs = r.relocalisation.locateCpuMs;
-    }
-    return out;
-  };
-}
 
 // A CSV field: quoted, inner quotes doubled.
 std::string quoted(const std::string& text) {
@@ -177,7 +161,7 @@ CommandRegistration registerExperimentRelocalisationCommand(CLI::App& parent) {
               a->experiment.baseline = false;
             }
             const RelocalisationExperimentResult r = runRelocalisationExperiment(
-                sim, map, [&] { return trackerOn(map, params); }, a->experiment);
+                sim, map, [&] { return multiReferenceFrameTracker(map, params); }, a->experiment);
 
             const RateSummary cold = r.coldStart(), base = r.coldStartBaseline(), kid = r.kidnap();
             std::printf("\n%-34s %7s %7s %7s %10s\n", "relocalisation", "trials", "good%", "wrong",
@@ -213,7 +197,8 @@ CommandRegistration registerExperimentRelocalisationCommand(CLI::App& parent) {
               }
               progress.finish();
               const TrackedFrameTiming t =
-                  compareTrackedFrameMs(frames, trackerOn(map, params), trackerOn(pairMap, params));
+                  compareTrackedFrameMs(frames, multiReferenceFrameTracker(map, params),
+                                        multiReferenceFrameTracker(pairMap, params));
               const double many = median(t.msFirst), two = median(t.msSecond);
               std::printf("\n%-34s %7s %10s\n", "tracked frame (handheld)", "tracked", "median_ms");
               std::printf("%-34s %7zu %10.2f\n",

@@ -8,6 +8,7 @@
 
 #include "app/cli/ProgressBar.hpp"
 #include "app/research/homography/HomographyGroundTruth.hpp"
+#include "app/research/homography/StaticHomographyExperiment.hpp"
 #include "app/simulator/CameraEffectsPipeline.hpp"
 #include "app/simulator/SceneSimulator.hpp"
 #include "app/simulator/SensorNoise.hpp"
@@ -66,14 +67,8 @@ void RotationSweepOptions::check() const {
 
 std::vector<RotationStep> runRotationSweep(const RotationSweepOptions& options) {
   options.check();
-  SimulationOptions sim;
-  sim.preset = "static";
-  sim.frames = 1;
-  sim.size = options.size;
-  sim.fovDeg = options.fovDeg;
-  sim.seed = options.seed;
-  sim.noiseSigma = options.noiseSigma;
-  sim.effects.photos = options.effects.photos;
+  SimulationOptions sim = staticViewSimulation(options.size, options.fovDeg, options.seed,
+                                               options.noiseSigma, options.effects);
   sim.distortion = options.distortion;
   SceneSimulator simulator(sim);
   const CameraEffectsPipeline camera(

@@ -26,26 +26,33 @@ void StaticExperimentOptions::check() const {
   effects.check();
 }
 
-StaticExperimentResult runStaticExperiment(const StaticExperimentOptions& options) {
-  options.check();
+SimulationOptions staticViewSimulation(cv::Size size, double fovDeg, std::uint64_t seed,
+                                       double noiseSigma, const CameraEffects& effects) {
   SimulationOptions sim;
   sim.preset = "static";
   sim.frames = 1;
-  sim.size = options.size;
-  sim.fovDeg = options.fovDeg;
-  sim.seed = options.seed;
-  sim.noiseSigma = options.noiseSigma;
-  sim.effects.photos = options.effects.photos;
-  SceneSimulator simulator(sim);
+  sim.size = size;
+  sim.fovDeg = fovDeg;
+  sim.seed = seed;
+  sim.noiseSigma = noiseSigma;
+  sim.effects.photos = effects.photos;
+  return sim;
+}
+
+StaticExperimentResult runStaticExperiment(const StaticExperimentOptions& options) {
+  options.check();
+  SceneSimulator simulator(staticViewSimulation(options.size, options.fovDeg, options.seed,
+                                                options.noiseSigma, options.effects));
   // One clean render; every frame (and the reference) differs only by its sensor noise.
   const cv::Mat clean = simulator.renderView(simulator.referencePoseA(), 0, 0.0);
   CameraEffectsPipeline camera(
       options.effects,
-      CameraSetup{options.size, 30.0, options.frames, options.seed, sim.noiseSigma},
+      CameraSetup{options.size, 30.0, options.frames, options.seed, options.noiseSigma},
       [&](double) { return clean; });
   const cv::Mat reference =
-      options.effects.any() ? camera.still(clean, mixSeed(options.seed, 0xA11CE))
-                            : addSensorNoise(clean, mixSeed(options.seed, 0xA11CE), sim.noiseSigma);
+      options.effects.any()
+          ? camera.still(clean, mixSeed(options.seed, 0xA11CE))
+          : addSensorNoise(clean, mixSeed(options.seed, 0xA11CE), options.noiseSigma);
   HomographyTracker tracker(reference, options.params);
   const cv::Point2d centre((options.size.width - 1) / 2.0, (options.size.height - 1) / 2.0);
 
@@ -58,7 +65,7 @@ StaticExperimentResult runStaticExperiment(const StaticExperimentOptions& option
         options.effects.any()
             ? camera.frame(k)
             : addSensorNoise(clean, mixSeed(options.seed, static_cast<std::uint64_t>(k) + 1),
-                             sim.noiseSigma);
+                             options.noiseSigma);
     const auto t0 = std::chrono::steady_clock::now();
     const HomographyTrackResult r = tracker.track(frame);
     out.milliseconds.push_back(

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "app/simulator/CameraEffects.hpp"
+#include "app/simulator/SimulationOptions.hpp"
 #include "engine/config/TrackerParams.hpp"
 
 namespace reftrack::app {
@@ -36,5 +37,10 @@ struct StaticExperimentResult {
 };
 
 StaticExperimentResult runStaticExperiment(const StaticExperimentOptions& options);
+
+// The simulator set for one still view (preset "static", one frame: reference view A), with the
+// photos of `effects` in the scene; the homography experiments render their stills from it.
+SimulationOptions staticViewSimulation(cv::Size size, double fovDeg, std::uint64_t seed,
+                                       double noiseSigma, const CameraEffects& effects);
 
 }  // namespace reftrack::app

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <limits>
+#include <memory>
 #include <opencv2/imgproc.hpp>
 
 #include "app/cli/ProgressBar.hpp"
@@ -11,6 +12,7 @@
 #include "engine/core/Error.hpp"
 #include "engine/core/ThreadCpuClock.hpp"
 #include "engine/evaluation/TrajectoryEvaluator.hpp"
+#include "engine/tracking/MultiReferenceTracker.hpp"
 
 namespace reftrack::app {
 
@@ -41,6 +43,21 @@ void RelocalisationExperimentOptions::check() const {
     throw Error("relocalisation experiment: successPx must be > 0 and <= wrongPx");
   if (!(cubeSide > 0.0)) throw Error("relocalisation experiment: cubeSide must be positive");
   views.check();
+}
+
+FrameTracker multiReferenceFrameTracker(const MultiReferenceMap& map, const TrackerParams& params) {
+  auto tracker = std::make_shared<MultiReferenceTracker>(map, params);
+  return [tracker](const cv::Mat& frame) {
+    const MultiReferenceResult r = tracker->process(frame);
+    FrameOutcome out(r.tracking.worldToCamera);
+    out.message = r.tracking.message;
+    if (r.relocalisation.attempted) {
+      out.message += " [relocaliser: " + r.relocalisation.message + "]";
+      out.relocaliseMs = r.relocalisation.locateMs;
+      out.relocaliseCpuMs = r.relocalisation.locateCpuMs;
+    }
+    return out;
+  };
 }
 
 double poseCubeErrorPx(const PinholeCamera& camera, const RigidPose& truth,

@@ -88,6 +88,10 @@ struct FrameOutcome {
 using FrameTracker = std::function<FrameOutcome(const cv::Mat& frame)>;
 using TrackerFactory = std::function<FrameTracker()>;
 
+// A fresh MultiReferenceTracker on `map` as a FrameTracker: its pose and message (with the
+// relocaliser's, when it made an attempt) and the attempt's locate times.
+FrameTracker multiReferenceFrameTracker(const MultiReferenceMap& map, const TrackerParams& params);
+
 // Cube-vertex reprojection error (pixels, mean over the visible vertices) of `estimate`.
 double poseCubeErrorPx(const PinholeCamera& camera, const RigidPose& truth,
                        const RigidPose& estimate, double cubeSide = 0.1);

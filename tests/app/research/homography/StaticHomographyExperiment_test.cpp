@@ -37,3 +37,17 @@ TEST(StaticHomographyExperiment, RejectsBadOptions) {
   o.size = {10, 10};
   EXPECT_THROW(o.check(), Error);
 }
+
+TEST(StaticHomographyExperiment, StaticViewSimulationIsOneStillOfReferenceViewA) {
+  CameraEffects effects;
+  effects.photos = true;
+  const SimulationOptions s = staticViewSimulation({640, 480}, 50.0, 7, 1.5, effects);
+  EXPECT_EQ(s.preset, "static");
+  EXPECT_EQ(s.frames, 1);
+  EXPECT_EQ(s.size, cv::Size(640, 480));
+  EXPECT_EQ(s.fovDeg, 50.0);
+  EXPECT_EQ(s.seed, 7u);
+  EXPECT_EQ(s.noiseSigma, 1.5);
+  EXPECT_TRUE(s.effects.photos);
+  EXPECT_NO_THROW(s.check());
+}

@@ -8,11 +8,31 @@
 #include "app/research/sixdof/SimulatedSequence.hpp"
 #include "engine/core/Error.hpp"
 #include "engine/evaluation/TrajectoryEvaluator.hpp"
-#include "engine/tracking/MultiReferenceTracker.hpp"
 #include "render/context/GlContext.hpp"
 
 using namespace reftrack;
 using namespace reftrack::app;
+
+namespace {
+
+SimulationOptions walkaroundOneFrame() {
+  SimulationOptions o;
+  o.preset = "walkaround";
+  o.frames = 1;
+  o.references = 6;
+  return o;
+}
+
+// The walkaround's six references and their prepared map, drawn from by the experiments below
+// (declaration order is construction order: the GL context first).
+struct WalkaroundSixReferences {
+  std::unique_ptr<render::GlContext> gl = render::createHeadlessContext();
+  SceneSimulator sim{walkaroundOneFrame()};
+  TrackerParams params;
+  MultiReferenceMap map = prepareSimulatedReferences(sim, 6, {}, params.relocalisation);
+};
+
+}  // namespace
 
 TEST(RelocalisationExperiment, PoseCubeErrorIsTheMeanVertexDisplacement) {
   const PinholeCamera camera = PinholeCamera::fromFieldOfView({640, 480}, 60.0);
@@ -80,34 +100,16 @@ TEST(RelocalisationExperiment, OptionsCheckNamesTheBadField) {
 // true 95%); this seed measures 19/20 cold starts and 9/10 kidnaps good (17/20 before the SQPnP
 // re-estimate and the references' finer ORB levels, 2026-12-01).
 TEST(RelocalisationExperiment, ColdStartAndKidnappedCameraOnSmallSamples) {
-  const auto gl = render::createHeadlessContext();
-  SimulationOptions o;
-  o.preset = "walkaround";
-  o.frames = 1;
-  o.references = 6;
-  SceneSimulator sim(o);
-  const TrackerParams params;
-  const MultiReferenceMap map = prepareSimulatedReferences(sim, 6, {}, params.relocalisation);
+  WalkaroundSixReferences w;
+  SceneSimulator& sim = w.sim;
+  const TrackerParams& params = w.params;
+  const MultiReferenceMap& map = w.map;
   RelocalisationExperimentOptions e;
   e.coldStarts = 20;
   e.kidnaps = 10;
   e.baseline = false;
   const RelocalisationExperimentResult r = runRelocalisationExperiment(
-      sim, map,
-      [&] {
-        auto tracker = std::make_shared<MultiReferenceTracker>(map, params);
-        return FrameTracker([tracker](const cv::Mat& frame) {
-          const MultiReferenceResult m = tracker->process(frame);
-          FrameOutcome out(m.tracking.worldToCamera);
-          out.message = m.tracking.message;
-          if (m.relocalisation.attempted) {
-            out.relocaliseMs = m.relocalisation.locateMs;
-            out.relocaliseCpuMs = m.relocalisation.locateCpuMs;
-          }
-          return out;
-        });
-      },
-      e);
+      sim, map, [&] { return multiReferenceFrameTracker(map, params); }, e);
   const RateSummary cold = r.coldStart(), kidnap = r.kidnap();
   std::cout << "cold start " << cold.good << "/" << cold.trials << " good, " << cold.wrong
             << " wrong, median " << r.medianColdStartMs() << " ms (relocaliser "
@@ -137,14 +139,10 @@ TEST(RelocalisationExperiment, ColdStartAndKidnappedCameraOnSmallSamples) {
 // 6-reference walkaround map: at least 11 of 12 good and none wrong (the 95%: 11/12
 // holds 88% of the time at a true 95%).
 TEST(RelocalisationExperiment, CloseViewsColdStart) {
-  const auto gl = render::createHeadlessContext();
-  SimulationOptions o;
-  o.preset = "walkaround";
-  o.frames = 1;
-  o.references = 6;
-  SceneSimulator sim(o);
-  const TrackerParams params;
-  const MultiReferenceMap map = prepareSimulatedReferences(sim, 6, {}, params.relocalisation);
+  WalkaroundSixReferences w;
+  SceneSimulator& sim = w.sim;
+  const TrackerParams& params = w.params;
+  const MultiReferenceMap& map = w.map;
   RelocalisationExperimentOptions e;
   e.coldStarts = 12;
   e.kidnaps = 0;
@@ -153,15 +151,7 @@ TEST(RelocalisationExperiment, CloseViewsColdStart) {
   e.views.minDistanceRatio = 0.5;
   e.views.maxDistanceRatio = 0.65;
   const RateSummary cold = runRelocalisationExperiment(
-                               sim, map,
-                               [&] {
-                                 auto tracker =
-                                     std::make_shared<MultiReferenceTracker>(map, params);
-                                 return FrameTracker([tracker](const cv::Mat& frame) {
-                                   return tracker->process(frame).tracking.worldToCamera;
-                                 });
-                               },
-                               e)
+                               sim, map, [&] { return multiReferenceFrameTracker(map, params); }, e)
                                .coldStart();
   std::cout << "close views (0.5-0.65x): " << cold.good << "/" << cold.trials << " good, "
             << cold.wrong << " wrong\n";

@@ -5,10 +5,10 @@
 
 #include "engine/geometry/RigidPose.hpp"
 
-namespace reftrack::app {
+namespace reftrack {
 
 // Throws reftrack::Error when eye == target or the viewing direction is parallel to `up`.
 RigidPose lookAtPose(const Eigen::Vector3d& eye, const Eigen::Vector3d& target,
                      const Eigen::Vector3d& up = Eigen::Vector3d::UnitZ());
 
-}  // namespace reftrack::app
+}  // namespace reftrack

@@ -1,4 +1,4 @@
-#include "app/simulator/LookAt.hpp"
+#include "engine/geometry/LookAt.hpp"
 
 #include <gtest/gtest.h>
 
@@ -6,7 +6,6 @@
 #include "engine/geometry/PinholeCamera.hpp"
 
 using namespace reftrack;
-using namespace reftrack::app;
 
 TEST(LookAt, TargetProjectsToThePrincipalPointWithUpAtTheTop) {
   const PinholeCamera cam = PinholeCamera::fromFieldOfView({640, 480}, 60.0);

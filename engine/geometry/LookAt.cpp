@@ -1,10 +1,10 @@
-#include "app/simulator/LookAt.hpp"
+#include "engine/geometry/LookAt.hpp"
 
 #include <Eigen/Geometry>
 
 #include "engine/core/Error.hpp"
 
-namespace reftrack::app {
+namespace reftrack {
 
 RigidPose lookAtPose(const Eigen::Vector3d& eye, const Eigen::Vector3d& target,
                      const Eigen::Vector3d& up) {
@@ -23,4 +23,4 @@ RigidPose lookAtPose(const Eigen::Vector3d& eye, const Eigen::Vector3d& target,
   return RigidPose(R, -R * eye);
 }
 
-}  // namespace reftrack::app
+}  // namespace reftrack
