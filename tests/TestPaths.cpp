@@ -2,6 +2,8 @@
 
 #include <unistd.h>
 
+#include <fstream>
+#include <sstream>
 #include <string>
 
 namespace reftrack::test {
@@ -25,5 +27,12 @@ std::optional<std::filesystem::path> sharedDataDir() {
 }
 
 std::filesystem::path reftrackBinary() { return REFTRACK_BINARY; }
+
+std::string readTextFile(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
 
 }  // namespace reftrack::test

@@ -1,6 +1,7 @@
 #pragma once
 // Paths shared by the test suites: the source tree, a fresh scratch folder per test, the
-// optional ../shared/data recordings (tests skip with a message when they are absent).
+// optional ../shared/data recordings (tests skip with a message when they are absent); reading a
+// written file back.
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -14,5 +15,7 @@ std::filesystem::path freshTempDir(const std::string& name);
 std::optional<std::filesystem::path> sharedDataDir();
 // The built `reftrack` executable, for end-to-end command tests.
 std::filesystem::path reftrackBinary();
+// The whole content of a file ("" when it cannot be read).
+std::string readTextFile(const std::filesystem::path& file);
 
 }  // namespace reftrack::test

@@ -12,23 +12,35 @@
 namespace reftrack::app {
 
 namespace {
-std::vector<std::pair<int, CommandFactory>>& factoryTable() {
-  static std::vector<std::pair<int, CommandFactory>> table;
+struct CommandEntry {
+  int order;
+  RegisteredCommand command;
+};
+
+std::vector<CommandEntry>& commandTable() {
+  static std::vector<CommandEntry> table;
   return table;
 }
 }  // namespace
 
-CommandRegistrar::CommandRegistrar(int order, CommandFactory factory) {
-  factoryTable().emplace_back(order, factory);
+CommandRegistrar::CommandRegistrar(int order, CommandFactory factory, CommandGroup group) {
+  commandTable().push_back({order, {factory, group}});
 }
 
-std::vector<CommandFactory> registeredCommands() {
-  auto table = factoryTable();
-  std::stable_sort(table.begin(), table.end(),
-                   [](const auto& a, const auto& b) { return a.first < b.first; });
-  std::vector<CommandFactory> out;
-  for (const auto& entry : table) out.push_back(entry.second);
+std::vector<RegisteredCommand> registeredCommands() {
+  auto table = commandTable();
+  std::stable_sort(table.begin(), table.end(), [](const CommandEntry& a, const CommandEntry& b) {
+    return std::pair(a.command.group, a.order) < std::pair(b.command.group, b.order);
+  });
+  std::vector<RegisteredCommand> out;
+  for (const CommandEntry& entry : table) out.push_back(entry.command);
   return out;
+}
+
+const char* commandGroupHeading(CommandGroup group) {
+  return group == CommandGroup::Research
+             ? "Research (the paper's experiments, benchmarks against baselines)"
+             : "Commands";
 }
 
 int runCommandLine(int argc, char** argv) {
@@ -38,7 +50,10 @@ int runCommandLine(int argc, char** argv) {
   app.fallthrough(false);
 
   std::vector<CommandRegistration> commands;
-  for (CommandFactory factory : registeredCommands()) commands.push_back(factory(app));
+  for (const RegisteredCommand& registered : registeredCommands()) {
+    commands.push_back(registered.factory(app));
+    commands.back().subcommand->group(commandGroupHeading(registered.group));
+  }
 
   try {
     app.parse(argc, argv);

@@ -1,6 +1,7 @@
 #pragma once
-// Every subcommand of `reftrack` lives in one file under app/commands/ and registers itself
-// with a file-scope CommandRegistrar; `order` sets its place in `reftrack --help`.
+// Every subcommand of `reftrack` lives in one file — product commands under app/commands/, research
+// commands (experiments, benchmarks) under app/research/commands/ — and registers itself with a
+// file-scope CommandRegistrar; `reftrack --help` lists the product group first, each by `order`.
 #include <utility>
 #include <vector>
 
@@ -10,11 +11,21 @@ namespace reftrack::app {
 
 using CommandFactory = CommandRegistration (*)(CLI::App& parent);
 
+enum class CommandGroup { Product, Research };
+
 struct CommandRegistrar {
-  CommandRegistrar(int order, CommandFactory factory);
+  CommandRegistrar(int order, CommandFactory factory, CommandGroup group = CommandGroup::Product);
 };
 
-// All registered factories, sorted by order.
-std::vector<CommandFactory> registeredCommands();
+struct RegisteredCommand {
+  CommandFactory factory;
+  CommandGroup group;
+};
+
+// All registered commands, product first, each group sorted by order.
+std::vector<RegisteredCommand> registeredCommands();
+
+// The heading of a group in `reftrack --help`.
+const char* commandGroupHeading(CommandGroup group);
 
 }  // namespace reftrack::app

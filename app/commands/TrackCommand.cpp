@@ -6,7 +6,7 @@
 #include <memory>
 
 #include "app/commands/Commands.hpp"
-#include "app/homography/HomographyTrackRun.hpp"
+#include "app/tracking/HomographyTrack.hpp"
 #include "app/tracking/SixDofTrack.hpp"
 #include "engine/config/TrackerParams.hpp"
 #include "engine/core/Error.hpp"

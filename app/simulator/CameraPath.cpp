@@ -6,10 +6,10 @@
 #include <numbers>
 #include <opencv2/core.hpp>
 
-#include "app/simulator/LookAt.hpp"
 #include "app/simulator/SensorNoise.hpp"
 #include "app/simulator/WalkaroundArc.hpp"
 #include "engine/core/Error.hpp"
+#include "engine/geometry/LookAt.hpp"
 
 namespace reftrack::app {
 

@@ -3,9 +3,9 @@
 #include <numbers>
 #include <string>
 
-#include "app/simulator/LookAt.hpp"
 #include "app/simulator/WalkaroundArc.hpp"
 #include "engine/core/Error.hpp"
+#include "engine/geometry/LookAt.hpp"
 
 namespace reftrack::app {
 

@@ -3,11 +3,11 @@
 #include "app/simulator/CameraEffectsPipeline.hpp"
 #include "app/simulator/DeskScene.hpp"
 #include "app/simulator/DistortingLens.hpp"
-#include "app/simulator/LookAt.hpp"
 #include "app/simulator/PhotoPrints.hpp"
 #include "app/simulator/ReferencePlacement.hpp"
 #include "app/simulator/SensorNoise.hpp"
 #include "engine/core/Error.hpp"
+#include "engine/geometry/LookAt.hpp"
 #include "render/CameraProjection.hpp"
 
 namespace reftrack::app {

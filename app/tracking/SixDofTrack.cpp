@@ -7,7 +7,7 @@
 
 #include "app/cli/Interruption.hpp"
 #include "app/cli/ProgressBar.hpp"
-#include "app/sources/FrameSourceFactory.hpp"
+#include "app/tracking/TrackInput.hpp"
 #include "app/viewer/OverlayCompositor.hpp"
 #include "app/viewer/PoseFrameTracker.hpp"
 #include "app/viewer/VideoRecorder.hpp"
@@ -54,11 +54,8 @@ int runSixDofTrack(const SixDofTrackOptions& o) {
   params.check();
 
   // One headless GL context for the simulator source and the recorded overlay.
-  std::unique_ptr<render::GlContext> gl;
-  if (isSimulatorInput(o.input) || !o.record.empty()) gl = render::createHeadlessContext();
-  FrameSourceOptions sourceOptions;
-  sourceOptions.simSize = map.camera.imageSize();
-  std::unique_ptr<FrameSource> source = openFrameSource(o.input, sourceOptions);
+  TrackInput input(o.input, map.camera.imageSize(), "the camera is calibrated for", o.maxFrames,
+                   !o.record.empty());
 
   PoseFrameTracker tracker(map, params);
   std::unique_ptr<OverlayCompositor> compositor;
@@ -67,42 +64,21 @@ int runSixDofTrack(const SixDofTrackOptions& o) {
   overlay.size = o.cubeSize;
   if (!o.record.empty()) {
     compositor = std::make_unique<OverlayCompositor>();
-    recorder = std::make_unique<VideoRecorder>(o.record, source->fps(), map.camera.imageSize());
+    recorder =
+        std::make_unique<VideoRecorder>(o.record, input.source().fps(), map.camera.imageSize());
   }
 
   std::ostringstream csv;
   csv << csvHeader() << std::setprecision(10);
   TumTrajectory trajectory;
-  const int total = o.maxFrames > 0
-                        ? std::min(o.maxFrames, source->frameCount().value_or(o.maxFrames))
-                        : source->frameCount().value_or(0);
-  ProgressBar progress("track 6dof", static_cast<std::size_t>(std::max(total, 0)));
+  ProgressBar progress("track 6dof", static_cast<std::size_t>(input.expectedCount()));
   int processed = 0, tracked = 0, switches = 0, relocAttempts = 0, relocSucceeded = 0;
   std::pair<int, int> lastPair{-1, -1};
   std::vector<double> ms, relocMs;
-  // A frame that cannot be read or used mid-stream ends the run like the end of the input, so
-  // everything written up to it is kept; the error is reported after the outputs are finished.
-  std::string streamError;
-  int lastIndex = -1;
   const InterruptibleWork interruptible;  // Ctrl-C ends the loop; the outputs are then finished
-  while ((o.maxFrames < 0 || processed < o.maxFrames) && !interruptRequested()) {
-    std::optional<Frame> frame;
-    try {
-      frame = source->next();
-    } catch (const Error& e) {
-      streamError = e.what();
-      break;
-    }
+  while (!interruptRequested()) {
+    const std::optional<Frame> frame = input.next();
     if (!frame) break;
-    if (frame->image.size() != map.camera.imageSize()) {
-      streamError = "input '" + o.input + "' frame " + std::to_string(frame->index) + " is " +
-                    std::to_string(frame->image.cols) + "x" + std::to_string(frame->image.rows) +
-                    " but the camera is calibrated for " +
-                    std::to_string(map.camera.imageSize().width) + "x" +
-                    std::to_string(map.camera.imageSize().height);
-      if (processed == 0) throw Error(streamError);
-      break;
-    }
     const TrackingResult result = tracker.process(frame->image, frame->index, frame->timestamp);
     const MultiReferenceResult& multi = tracker.last();
     const PoseTrackingResult& r = multi.tracking;
@@ -146,19 +122,12 @@ int runSixDofTrack(const SixDofTrackOptions& o) {
       recorder->write(composite, frame->timestamp, r.worldToCamera);
     }
     ++processed;
-    lastIndex = frame->index;
     progress.advance();
   }
   progress.finish();
-  if (processed == 0)
-    throw Error(streamError.empty() ? "input '" + o.input + "' gave no frames" : streamError);
+  input.requireFrames();
   // A recording that cannot be finished (full disk) must not cost the other outputs.
-  std::string recordingError;
-  if (recorder) try {
-      recorder->close();
-    } catch (const Error& e) {
-      recordingError = e.what();
-    }
+  const std::string recordingError = closeRecording(recorder.get());
   if (!o.trajectory.empty()) trajectory.save(o.trajectory);
   if (!o.csv.empty())
     writeFileAtomically(o.csv, [&](const std::filesystem::path& tmp) {
@@ -169,8 +138,7 @@ int runSixDofTrack(const SixDofTrackOptions& o) {
       if (std::fclose(f) != 0 || !ok) throw Error("cannot write " + o.csv.string());
     });
   if (!recordingError.empty()) throw Error(recordingError);
-  if (!streamError.empty())
-    throw Error(streamError + " (outputs written up to frame " + std::to_string(lastIndex) + ")");
+  input.throwIfCutShort();
   std::nth_element(ms.begin(), ms.begin() + static_cast<long>(ms.size() / 2), ms.end());
   std::printf("6dof: %d frames, %d tracked (%.1f%%), median %.2f ms per frame\n", processed,
               tracked, 100.0 * tracked / processed, ms[ms.size() / 2]);

@@ -134,4 +134,14 @@ void VideoRecorder::close() {
   trackedTrajectory_.reset();
 }
 
+std::string closeRecording(VideoRecorder* recorder) {
+  if (!recorder) return "";
+  try {
+    recorder->close();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
 }  // namespace reftrack::app

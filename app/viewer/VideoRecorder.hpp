@@ -51,4 +51,9 @@ class VideoRecorder {
   bool closed_ = false;
 };
 
+// Closes `recorder` (none: nothing to do) and returns the error message of a recording that
+// cannot be finished (a full disk) instead of throwing it, so the caller's other outputs are
+// still written before it reports the failure; "" on success.
+std::string closeRecording(VideoRecorder* recorder);
+
 }  // namespace reftrack::app

@@ -6,6 +6,7 @@
 #include <opencv2/core.hpp>
 #include <sstream>
 
+#include "engine/core/DataLines.hpp"
 #include "engine/core/Error.hpp"
 
 namespace reftrack {
@@ -54,13 +55,9 @@ std::vector<StampedImageFile> readFrameList(const fs::path& folder) {
   std::ifstream in(csv);
   if (!in) throw Error("EuRoC frame list '" + csv.string() + "' cannot be opened");
   std::vector<StampedImageFile> frames;
-  std::string line;
-  int lineNo = 0;
   long long previous = 0;
-  while (std::getline(in, line)) {
-    ++lineNo;
+  forEachDataLine(in, [&](const std::string& line, int lineNo) {
     const std::string text = trim(line);
-    if (text.empty() || text[0] == '#') continue;
     const std::string where =
         "EuRoC frame list '" + csv.string() + "', line " + std::to_string(lineNo);
     const auto comma = text.find(',');
@@ -78,7 +75,7 @@ std::vector<StampedImageFile> readFrameList(const fs::path& folder) {
       throw Error(where + ": image '" + file.string() + "' does not exist");
     previous = ns;
     frames.push_back({static_cast<double>(ns) * 1e-9, file});
-  }
+  });
   if (frames.empty()) throw Error("EuRoC frame list '" + csv.string() + "' lists no frame");
   return frames;
 }

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "engine/core/DataLines.hpp"
 #include "engine/core/Error.hpp"
 
 namespace reftrack {
@@ -15,13 +16,8 @@ TumTrajectory readEurocGroundTruth(const std::filesystem::path& csv,
   std::ifstream in(csv);
   if (!in) throw Error("EuRoC ground truth '" + csv.string() + "' cannot be opened");
   TumTrajectory trajectory;
-  std::string line;
-  int lineNo = 0;
   long long previous = 0;
-  while (std::getline(in, line)) {
-    ++lineNo;
-    const auto first = line.find_first_not_of(" \t\r");
-    if (first == std::string::npos || line[first] == '#') continue;
+  forEachDataLine(in, [&](const std::string& line, int lineNo) {
     const std::string where = "EuRoC ground truth '" + csv.string() + "', line " +
                               std::to_string(lineNo) +
                               ": expected 'timestamp [ns], p_RS_R x y z, q_RS w x y z, ...'";
@@ -54,7 +50,7 @@ TumTrajectory readEurocGroundTruth(const std::filesystem::path& csv,
     const RigidPose cameraToWorld = bodyToWorld * sensorToBody;
     trajectory.poses.push_back({static_cast<double>(ns) * 1e-9, cameraToWorld.inverse()});
     previous = ns;
-  }
+  });
   if (trajectory.poses.empty())
     throw Error("EuRoC ground truth '" + csv.string() + "' holds no pose");
   return trajectory;

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "engine/core/DataLines.hpp"
 #include "engine/core/Error.hpp"
 
 namespace reftrack {
@@ -17,12 +18,7 @@ std::vector<StampedImageFile> readTumRgbList(const std::filesystem::path& dir) {
   std::ifstream in(list);
   if (!in) throw Error("TUM RGB-D frame list '" + list.string() + "' cannot be opened");
   std::vector<StampedImageFile> frames;
-  std::string line;
-  int lineNo = 0;
-  while (std::getline(in, line)) {
-    ++lineNo;
-    const auto first = line.find_first_not_of(" \t\r");
-    if (first == std::string::npos || line[first] == '#') continue;
+  forEachDataLine(in, [&](const std::string& line, int lineNo) {
     const std::string where =
         "TUM RGB-D frame list '" + list.string() + "', line " + std::to_string(lineNo);
     std::istringstream ss(line);
@@ -39,7 +35,7 @@ std::vector<StampedImageFile> readTumRgbList(const std::filesystem::path& dir) {
     if (!std::filesystem::is_regular_file(file))
       throw Error(where + ": image '" + file.string() + "' does not exist");
     frames.push_back({t, file});
-  }
+  });
   if (frames.empty()) throw Error("TUM RGB-D frame list '" + list.string() + "' lists no frame");
   return frames;
 }

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "engine/core/AtomicFile.hpp"
+#include "engine/core/DataLines.hpp"
 #include "engine/core/Error.hpp"
 
 namespace reftrack {
@@ -15,12 +16,7 @@ TumTrajectory TumTrajectory::load(const std::filesystem::path& file) {
   std::ifstream in(file);
   if (!in) throw Error("trajectory file '" + file.string() + "' cannot be opened");
   TumTrajectory traj;
-  std::string line;
-  int lineNo = 0;
-  while (std::getline(in, line)) {
-    ++lineNo;
-    const auto first = line.find_first_not_of(" \t\r");
-    if (first == std::string::npos || line[first] == '#') continue;
+  forEachDataLine(in, [&](const std::string& line, int lineNo) {
     std::istringstream ss(line);
     double v[8];
     std::string token;
@@ -41,7 +37,7 @@ TumTrajectory TumTrajectory::load(const std::filesystem::path& file) {
                   ": quaternion is not unit length");
     RigidPose cameraToWorld(q, Eigen::Vector3d(v[1], v[2], v[3]));
     traj.poses.push_back({v[0], cameraToWorld.inverse()});
-  }
+  });
   return traj;
 }
 

@@ -7,6 +7,7 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "ErrorMessage.hpp"
 #include "TestPaths.hpp"
 #include "engine/core/Error.hpp"
 #include "render/RenderTarget.hpp"
@@ -20,12 +21,7 @@ namespace {
 std::filesystem::path modelsDir() { return test::sourceDir() / "assets" / "models"; }
 
 std::string loadError(const std::filesystem::path& file) {
-  try {
-    loadObjMesh(file);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
+  return test::errorMessage([&] { loadObjMesh(file); });
 }
 
 std::filesystem::path writeText(const std::filesystem::path& file, const std::string& text) {

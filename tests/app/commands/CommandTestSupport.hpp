@@ -6,7 +6,6 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <string>
 
 #include "TestPaths.hpp"
@@ -25,14 +24,8 @@ inline CommandRun runReftrack(const std::string& args, const std::filesystem::pa
   const int status = std::system(cmd.c_str());
   CommandRun r;
   r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  auto slurp = [](const std::filesystem::path& p) {
-    std::ifstream in(p);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-  };
-  r.out = slurp(outFile);
-  r.err = slurp(errFile);
+  r.out = readTextFile(outFile);
+  r.err = readTextFile(errFile);
   return r;
 }
 

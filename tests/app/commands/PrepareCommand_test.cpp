@@ -1,15 +1,13 @@
 // `reftrack prepare` against the simulator's exact poses and scene: marker poses, number and
 // accuracy of the triangulated points, and one clear error per kind of bad input.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <cmath>
-#include <cstdlib>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
-#include <sstream>
 
+#include "CommandTestSupport.hpp"
 #include "DatasetFixtures.hpp"
 #include "TestPaths.hpp"
 #include "app/simulator/SceneSimulator.hpp"
@@ -29,25 +27,8 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-struct CommandRun {
-  int exitCode;
-  std::string out, err;
-};
-
-std::string readText(const fs::path& file) {
-  std::ifstream in(file);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-CommandRun runReftrack(const std::string& args, const fs::path& scratch) {
-  const fs::path outFile = scratch / "stdout.txt", errFile = scratch / "stderr.txt";
-  const std::string cmd = test::reftrackBinary().string() + " " + args + " >" + outFile.string() +
-                          " 2>" + errFile.string();
-  const int status = std::system(cmd.c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, readText(outFile), readText(errFile)};
-}
+using test::CommandRun;
+using test::runReftrack;
 
 // Bilinear sample of a CV_32F image at a sub-pixel position (pixel centres at integers).
 double bilinear(const cv::Mat& img, cv::Point2f p) {

@@ -2,36 +2,15 @@
 
 #include <gtest/gtest.h>
 
-#include <random>
-
+#include "TwoViewTestMap.hpp"
 #include "engine/core/Error.hpp"
 
 using namespace reftrack;
 
 namespace {
 
-// A 320x240 map of 40 points 1-2 m in front of A, B 0.2 m to its right, flat grey images.
-ReferenceMap smallMap() {
-  Eigen::Matrix3d K;
-  K << 300, 0, 159.5, 0, 300, 119.5, 0, 0, 1;
-  ReferenceMap map;
-  map.camera = PinholeCamera(K, cv::Size(320, 240));
-  map.T_A = RigidPose();
-  map.T_B = RigidPose(Eigen::Matrix3d::Identity(), Eigen::Vector3d(-0.2, 0.0, 0.0));
-  map.imageA = cv::Mat(240, 320, CV_8UC3, cv::Scalar(100, 100, 100));
-  map.imageB = map.imageA.clone();
-  std::mt19937 rng(2);
-  std::uniform_real_distribution<double> u(-0.3, 0.3), z(1.0, 2.0);
-  for (int i = 0; i < 40; ++i) {
-    const Eigen::Vector3d P(u(rng), u(rng), z(rng));
-    const Eigen::Vector2d a = map.camera.project(P), b = map.camera.project(map.T_B * P);
-    map.cornersA.push_back({cv::Point2f(static_cast<float>(a.x()), static_cast<float>(a.y())), 20});
-    map.cornersB.push_back({cv::Point2f(static_cast<float>(b.x()), static_cast<float>(b.y())), 20});
-    map.matches.push_back({i, i, P});
-  }
-  map.poseSource = "test";
-  return map;
-}
+// 40 points, flat grey images: every coloured pixel is drawn by the picture.
+ReferenceMap smallMap() { return test::twoViewTestMap(40, 2, false); }
 
 bool isGrey(const cv::Vec3b& c) { return c[0] == c[1] && c[1] == c[2]; }
 

@@ -4,10 +4,10 @@
 
 #include <cmath>
 
-#include "app/simulator/LookAt.hpp"
 #include "app/simulator/ReferencePlacement.hpp"
 #include "app/simulator/WalkaroundArc.hpp"
 #include "engine/core/Error.hpp"
+#include "engine/geometry/LookAt.hpp"
 #include "engine/geometry/PinholeCamera.hpp"
 
 using namespace reftrack;

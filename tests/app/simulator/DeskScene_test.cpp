@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <opencv2/aruco.hpp>
 
-#include "app/simulator/LookAt.hpp"
+#include "engine/geometry/LookAt.hpp"
 #include "engine/geometry/PinholeCamera.hpp"
 
 using namespace reftrack;

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "TestDeskScene.hpp"
 #include "app/simulator/ReferencePlacement.hpp"
 #include "engine/core/Error.hpp"
 
@@ -11,16 +12,17 @@ using namespace reftrack;
 using namespace reftrack::app;
 
 namespace {
-const Eigen::Vector3d kEyeA(-0.125, -0.52, 0.74), kEyeB(0.125, -0.52, 0.74),
-    kTarget(0.0, 0.2, 0.06);
 constexpr double kDeg = M_PI / 180.0;
 
-std::vector<RigidPose> sixReferences() { return placeReferenceViews(6, kEyeA, kEyeB, kTarget); }
+std::vector<RigidPose> sixReferences() {
+  return placeReferenceViews(6, test::deskScene().referenceEyeA, test::deskScene().referenceEyeB,
+                             test::deskScene().contentCentre);
+}
 }  // namespace
 
 TEST(RandomViewSampler, ViewsLieWithinTheConeDistanceAndRoom) {
   const std::vector<RigidPose> refs = sixReferences();
-  RandomViewSampler sampler(refs, kTarget, 7);
+  RandomViewSampler sampler(refs, test::deskScene().contentCentre, 7);
   double rollLow = 0, rollHigh = 0, angleHigh = 0, ratioLow = 10, ratioHigh = 0;
   std::vector<int> perReference(refs.size(), 0);
   for (int i = 0; i < 500; ++i) {
@@ -36,14 +38,15 @@ TEST(RandomViewSampler, ViewsLieWithinTheConeDistanceAndRoom) {
     EXPECT_LE(angle, 45.0 * kDeg + 1e-9) << i;
     EXPECT_NEAR(angle / kDeg, v.angleDeg, 1e-6) << i;
     const Eigen::Vector3d eye = v.worldToCamera.cameraCentre();
-    const double ratio = (eye - kTarget).norm() / (ref.cameraCentre() - kTarget).norm();
+    const double ratio = (eye - test::deskScene().contentCentre).norm() /
+                         (ref.cameraCentre() - test::deskScene().contentCentre).norm();
     EXPECT_GE(ratio, 0.5 - 1e-9) << i;
     EXPECT_LE(ratio, 2.0 + 1e-9) << i;
     EXPECT_LT(std::abs(eye.x()), 0.95) << i;
     EXPECT_LT(eye.y(), 0.95) << i;
     EXPECT_GT(eye.z(), 0.35) << i;
     // Looks at the target: it projects onto the optical axis.
-    const Eigen::Vector3d inCamera = v.worldToCamera * kTarget;
+    const Eigen::Vector3d inCamera = v.worldToCamera * test::deskScene().contentCentre;
     EXPECT_LT(inCamera.head<2>().norm(), 1e-9) << i;
     EXPECT_GT(inCamera.z(), 0.0) << i;
     rollLow = std::min(rollLow, v.rollDeg);
@@ -64,8 +67,9 @@ TEST(RandomViewSampler, ViewsLieWithinTheConeDistanceAndRoom) {
 }
 
 TEST(RandomViewSampler, DeterministicInTheSeed) {
-  RandomViewSampler a(sixReferences(), kTarget, 3), b(sixReferences(), kTarget, 3),
-      c(sixReferences(), kTarget, 4);
+  RandomViewSampler a(sixReferences(), test::deskScene().contentCentre, 3),
+      b(sixReferences(), test::deskScene().contentCentre, 3),
+      c(sixReferences(), test::deskScene().contentCentre, 4);
   for (int i = 0; i < 5; ++i) {
     const SampledView va = a.next(), vb = b.next(), vc = c.next();
     EXPECT_EQ(va.worldToCamera.matrix4(), vb.worldToCamera.matrix4());
@@ -74,15 +78,15 @@ TEST(RandomViewSampler, DeterministicInTheSeed) {
 }
 
 TEST(RandomViewSampler, RejectsBadInput) {
-  EXPECT_THROW(RandomViewSampler({}, kTarget, 1), Error);
+  EXPECT_THROW(RandomViewSampler({}, test::deskScene().contentCentre, 1), Error);
   RandomViewParams p;
   p.maxAngleDeg = 95;
-  EXPECT_THROW(RandomViewSampler(sixReferences(), kTarget, 1, p), Error);
+  EXPECT_THROW(RandomViewSampler(sixReferences(), test::deskScene().contentCentre, 1, p), Error);
   p = {};
   p.minDistanceRatio = 3.0;
-  EXPECT_THROW(RandomViewSampler(sixReferences(), kTarget, 1, p), Error);
+  EXPECT_THROW(RandomViewSampler(sixReferences(), test::deskScene().contentCentre, 1, p), Error);
   p = {};
   p.minHeight = 5.0;  // above every possible eye
-  RandomViewSampler impossible(sixReferences(), kTarget, 1, p);
+  RandomViewSampler impossible(sixReferences(), test::deskScene().contentCentre, 1, p);
   EXPECT_THROW(impossible.next(), Error);
 }

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "ErrorMessage.hpp"
 #include "engine/core/Error.hpp"
 
 using namespace reftrack;
@@ -9,22 +10,17 @@ using namespace reftrack::app;
 
 namespace {
 std::string checkError(const SimulationOptions& o) {
-  try {
-    o.check();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
+  return test::errorMessage([&] { o.check(); });
 }
 }  // namespace
 
 TEST(SimulationOptions, DefaultsAreValidAndEveryPresetIsAccepted) {
   SimulationOptions o;
-  EXPECT_EQ(checkError(o), "");
+  EXPECT_EQ(checkError(o), "(no error)");
   EXPECT_EQ(simulationPresets().size(), 6u);
   for (const std::string& p : simulationPresets()) {
     o.preset = p;
-    EXPECT_EQ(checkError(o), "") << p;
+    EXPECT_EQ(checkError(o), "(no error)") << p;
   }
 }
 

@@ -6,6 +6,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "DatasetFixtures.hpp"
+#include "ErrorMessage.hpp"
 #include "TestPaths.hpp"
 #include "app/sources/EurocSequenceSource.hpp"
 #include "app/sources/ImageFolderSource.hpp"
@@ -22,12 +23,7 @@ namespace fs = std::filesystem;
 namespace {
 
 std::string errorOf(const std::string& input) {
-  try {
-    openFrameSource(input);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
+  return test::errorMessage([&] { openFrameSource(input); });
 }
 
 }  // namespace

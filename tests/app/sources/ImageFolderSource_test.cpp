@@ -6,6 +6,7 @@
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
 
+#include "ErrorMessage.hpp"
 #include "TestPaths.hpp"
 #include "engine/core/Error.hpp"
 
@@ -18,15 +19,6 @@ namespace {
 // Writes an image whose every pixel holds `value` (so the frame read identifies the file).
 void writeImage(const fs::path& file, int value, cv::Size size = {32, 24}) {
   ASSERT_TRUE(cv::imwrite(file.string(), cv::Mat(size, CV_8UC3, cv::Scalar::all(value))));
-}
-
-std::string errorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
 }
 
 }  // namespace
@@ -69,7 +61,9 @@ TEST(ImageFolderSource, GlobSelectsMatchingFilesOnly) {
   ImageFolderSource source((dir / "a_*.png").string());
   ASSERT_EQ(source.frameCount(), 2);
   EXPECT_EQ(source.files()[1].filename(), "a_3.png");
-  EXPECT_NE(errorOf([&] { ImageFolderSource((dir / "z*.png").string()); }).find("matches no file"),
+  EXPECT_NE(test::errorMessage([&] {
+              ImageFolderSource((dir / "z*.png").string());
+            }).find("matches no file"),
             std::string::npos);
 }
 
@@ -79,7 +73,7 @@ TEST(ImageFolderSource, UnreadableImageIsNamed) {
   std::ofstream(dir / "1.png") << "this is no PNG";
   ImageFolderSource source(dir.string());
   ASSERT_TRUE(source.next());
-  const std::string message = errorOf([&] { source.next(); });
+  const std::string message = test::errorMessage([&] { source.next(); });
   EXPECT_NE(message.find((dir / "1.png").string()), std::string::npos) << message;
   EXPECT_NE(message.find("cannot be read"), std::string::npos) << message;
 }
@@ -90,14 +84,16 @@ TEST(ImageFolderSource, SizeChangeIsNamed) {
   writeImage(dir / "1.png", 1, {16, 12});
   ImageFolderSource source(dir.string());
   ASSERT_TRUE(source.next());
-  const std::string message = errorOf([&] { source.next(); });
+  const std::string message = test::errorMessage([&] { source.next(); });
   EXPECT_NE(message.find("1.png' is 16x12"), std::string::npos) << message;
 }
 
 TEST(ImageFolderSource, MissingOrEmptyFolderIsAnError) {
   const fs::path dir = test::freshTempDir("ImageFolderSource_Missing");
-  EXPECT_NE(errorOf([&] { ImageFolderSource((dir / "nope").string()); }).find("does not exist"),
+  EXPECT_NE(test::errorMessage([&] {
+              ImageFolderSource((dir / "nope").string());
+            }).find("does not exist"),
             std::string::npos);
-  EXPECT_NE(errorOf([&] { ImageFolderSource(dir.string()); }).find("holds no image"),
+  EXPECT_NE(test::errorMessage([&] { ImageFolderSource(dir.string()); }).find("holds no image"),
             std::string::npos);
 }

@@ -7,7 +7,7 @@
 #include <iostream>
 #include <opencv2/imgproc.hpp>
 
-#include "app/homography/HomographyGroundTruth.hpp"
+#include "app/research/homography/HomographyGroundTruth.hpp"
 #include "app/simulator/SceneSimulator.hpp"
 #include "engine/core/Error.hpp"
 #include "engine/homography/HomographyDlt.hpp"

@@ -68,3 +68,17 @@ TEST(VideoRecorder, AbandonedOrFailedRecordingLeavesNoFile) {
   }
   EXPECT_TRUE(fs::is_empty(dir));
 }
+
+// closeRecording hands a recording's failure back as its message (the caller still writes its
+// other outputs) and finishes a good one like close().
+TEST(VideoRecorder, CloseRecordingReturnsTheFailureInsteadOfThrowing) {
+  const fs::path dir = test::freshTempDir("VideoRecorder_CloseRecording");
+  EXPECT_EQ(closeRecording(nullptr), "");
+  VideoRecorder empty(dir / "empty.mp4", 30.0, {32, 32});
+  EXPECT_NE(closeRecording(&empty).find("holds no frame"), std::string::npos);
+  VideoRecorder good(dir / "good.mp4", 30.0, {32, 32});
+  good.write(cv::Mat(32, 32, CV_8UC3, cv::Scalar::all(90)), 0.0, std::nullopt);
+  EXPECT_EQ(closeRecording(&good), "");
+  EXPECT_TRUE(fs::is_regular_file(dir / "good.mp4"));
+  EXPECT_FALSE(fs::exists(dir / "empty.mp4"));
+}

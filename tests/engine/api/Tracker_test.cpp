@@ -20,6 +20,8 @@ namespace reftrack {
 namespace {
 
 using test::PlaneMultiWorld;
+using test::rotationErrorDeg;
+using test::translationErrorMm;
 
 // Four references 0.2 m apart along x looking at a textured plane (exact ground truth), with
 // the relocaliser's keypoint layer, saved as a map folder the way `reftrack prepare` leaves one.
@@ -32,18 +34,6 @@ struct SavedMap {
     map.save(folder);
   }
 };
-
-// The camera (A -> camera) at x along the references' line, bobbing up and down and in depth.
-RigidPose along(double x, int k) {
-  return PlaneMultiWorld::cameraAt(x, 0.02 * std::sin(0.3 * k), 0.03 * std::sin(0.17 * k));
-}
-
-double translationErrorMm(const RigidPose& estimate, const RigidPose& truth) {
-  return RigidPose::translationDistance(estimate, truth) * 1000.0;
-}
-double rotationErrorDeg(const RigidPose& estimate, const RigidPose& truth) {
-  return RigidPose::rotationDistance(estimate, truth) * 180.0 / CV_PI;
-}
 
 // A path across three pairs of references: every frame tracked from the saved map, each pose
 // within MultiReferenceTracker_test's tolerances of the exact ground truth (2 mm / 0.1 degree for
@@ -58,9 +48,10 @@ TEST(Tracker, TracksFromASavedMapAgainstExactGroundTruth) {
   double maxT = 0.0, maxR = 0.0, sumSquaredZ = 0.0;
   std::set<int> referencesUsed;
   for (int k = 0; k < 40; ++k) {
-    const RigidPose truth = saved.world.worldToCamera(along(-0.28 + 0.014 * k, k));
-    const Tracker::Result r =
-        tracker.track(saved.world.render(along(-0.28 + 0.014 * k, k), 100 + k));
+    const RigidPose truth =
+        saved.world.worldToCamera(PlaneMultiWorld::cameraAlong(-0.28 + 0.014 * k, k));
+    const Tracker::Result r = tracker.track(
+        saved.world.render(PlaneMultiWorld::cameraAlong(-0.28 + 0.014 * k, k), 100 + k));
     ASSERT_EQ(r.state, Tracker::State::Tracking) << k << ": " << r.reason;
     EXPECT_EQ(r.frameIndex, k);
     ASSERT_TRUE(r.worldToCamera && r.covariance) << k;
@@ -102,11 +93,13 @@ TEST(Tracker, CovarianceIsTheTrackersOmegaCarriedToTheWorldFrame) {
   {
     MultiReferenceTracker direct(MultiReferenceMap::load(saved.folder), TrackerParams{});
     for (int k = 0; k < frames; ++k)
-      expected.push_back(direct.process(saved.world.render(along(-0.2 + 0.01 * k, k), 300 + k)));
+      expected.push_back(direct.process(
+          saved.world.render(PlaneMultiWorld::cameraAlong(-0.2 + 0.01 * k, k), 300 + k)));
   }
   Tracker tracker = Tracker::openMap(saved.folder);
   for (int k = 0; k < frames; ++k) {
-    const Tracker::Result r = tracker.track(saved.world.render(along(-0.2 + 0.01 * k, k), 300 + k));
+    const Tracker::Result r = tracker.track(
+        saved.world.render(PlaneMultiWorld::cameraAlong(-0.2 + 0.01 * k, k), 300 + k));
     const PoseTrackingResult& e = expected[static_cast<std::size_t>(k)].tracking;
     ASSERT_EQ(r.state, Tracker::State::Tracking) << k << ": " << r.reason;
     ASSERT_TRUE(e.worldToCamera && e.T_Ak && r.worldToCamera && r.covariance) << k;

@@ -4,26 +4,13 @@
 
 #include <limits>
 
+#include "engine/config/ParamsTestSupport.hpp"
 #include "engine/core/Error.hpp"
 
 using namespace reftrack;
 
-namespace {
-cv::FileStorage parse(const std::string& yaml) {
-  return cv::FileStorage("%YAML:1.0\n" + yaml, cv::FileStorage::READ | cv::FileStorage::MEMORY);
-}
-std::string messageOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
-}  // namespace
-
 TEST(ConfigValue, ReadsTypedValuesAndKeepsDefaultsForMissingKeys) {
-  auto fs = parse("s: { d: 2.5, i: 7, b: false, t: hello }\n");
+  auto fs = test::parseYaml("s: { d: 2.5, i: 7, b: false, t: hello }\n");
   double d = 1;
   int i = 1;
   bool b = true;
@@ -44,19 +31,19 @@ TEST(ConfigValue, ReadsTypedValuesAndKeepsDefaultsForMissingKeys) {
 }
 
 TEST(ConfigValue, WrongTypesAndNanNameTheKey) {
-  auto fs = parse("s: { d: abc, i: 2.5, b: maybe, n: .nan, inf: .inf }\n");
+  auto fs = test::parseYaml("s: { d: abc, i: 2.5, b: maybe, n: .nan, inf: .inf }\n");
   double d = 0;
   int i = 0;
   bool b = false;
-  EXPECT_NE(messageOf([&] { readConfigValue(fs["s"], "s", "d", d); }).find("'s.d'"),
+  EXPECT_NE(test::errorMessage([&] { readConfigValue(fs["s"], "s", "d", d); }).find("'s.d'"),
             std::string::npos);
-  EXPECT_NE(messageOf([&] { readConfigValue(fs["s"], "s", "i", i); }).find("'s.i'"),
+  EXPECT_NE(test::errorMessage([&] { readConfigValue(fs["s"], "s", "i", i); }).find("'s.i'"),
             std::string::npos);
-  EXPECT_NE(messageOf([&] { readConfigValue(fs["s"], "s", "b", b); }).find("'s.b'"),
+  EXPECT_NE(test::errorMessage([&] { readConfigValue(fs["s"], "s", "b", b); }).find("'s.b'"),
             std::string::npos);
-  EXPECT_NE(messageOf([&] { readConfigValue(fs["s"], "s", "n", d); }).find("NaN"),
+  EXPECT_NE(test::errorMessage([&] { readConfigValue(fs["s"], "s", "n", d); }).find("NaN"),
             std::string::npos);
-  EXPECT_NE(messageOf([&] { readConfigValue(fs["s"], "s", "inf", d); }).find("'s.inf'"),
+  EXPECT_NE(test::errorMessage([&] { readConfigValue(fs["s"], "s", "inf", d); }).find("'s.inf'"),
             std::string::npos);
 }
 
@@ -65,7 +52,8 @@ TEST(ConfigValue, RangeChecksRejectNanAndOutOfRange) {
   EXPECT_THROW(requireFiniteInRange("a.b", std::numeric_limits<double>::quiet_NaN(), 0, 1), Error);
   EXPECT_THROW(requireFiniteInRange("a.b", std::numeric_limits<double>::infinity(), 0, 1e300),
                Error);
-  EXPECT_NE(messageOf([] { requireFiniteInRange("a.b", 2, 0, 1); }).find("'a.b'"),
+  EXPECT_NE(test::errorMessage([] { requireFiniteInRange("a.b", 2, 0, 1); }).find("'a.b'"),
             std::string::npos);
-  EXPECT_NE(messageOf([] { requireIntInRange("c.d", -1, 0, 1); }).find("'c.d'"), std::string::npos);
+  EXPECT_NE(test::errorMessage([] { requireIntInRange("c.d", -1, 0, 1); }).find("'c.d'"),
+            std::string::npos);
 }

@@ -1,24 +1,15 @@
 #pragma once
-// Shared by the parameter-struct tests: YAML text -> FileStorage, and the message of a throw.
-#include <functional>
+// Shared by the parameter-struct tests: YAML text -> FileStorage, a write/read round trip, and
+// (ErrorMessage.hpp) the message of a throw.
 #include <opencv2/core.hpp>
 #include <string>
 
-#include "engine/core/Error.hpp"
+#include "ErrorMessage.hpp"
 
 namespace reftrack::test {
 
 inline cv::FileStorage parseYaml(const std::string& yaml) {
   return cv::FileStorage("%YAML:1.0\n" + yaml, cv::FileStorage::READ | cv::FileStorage::MEMORY);
-}
-
-inline std::string errorMessage(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const reftrack::Error& e) {
-    return e.what();
-  }
-  return "(no error)";
 }
 
 // Writes a section with `write` and reads it back into `out`.

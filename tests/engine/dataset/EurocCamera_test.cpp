@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "DatasetFixtures.hpp"
+#include "ErrorMessage.hpp"
 #include "TestPaths.hpp"
 #include "engine/core/Error.hpp"
 
@@ -54,12 +55,7 @@ fs::path writeMh01Like(const std::string& name) {
 }
 
 std::string errorOf(const fs::path& dir) {
-  try {
-    EurocCamera::open(dir);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
+  return test::errorMessage([&] { EurocCamera::open(dir); });
 }
 
 }  // namespace

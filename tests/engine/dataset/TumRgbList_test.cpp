@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "DatasetFixtures.hpp"
+#include "ErrorMessage.hpp"
 #include "TestPaths.hpp"
 #include "engine/core/Error.hpp"
 
@@ -15,12 +16,7 @@ namespace fs = std::filesystem;
 namespace {
 
 std::string errorOf(const fs::path& dir) {
-  try {
-    readTumRgbList(dir);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
+  return test::errorMessage([&] { readTumRgbList(dir); });
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <iostream>
 #include <opencv2/calib3d.hpp>
 
+#include "ErrorMessage.hpp"
 #include "TestPaths.hpp"
 #include "engine/core/Error.hpp"
 #include "engine/geometry/PixelDistortion.hpp"
@@ -30,12 +31,7 @@ std::string cameraYaml(const std::string& width, const std::string& K, const std
 }
 
 std::string loadError(const std::filesystem::path& file) {
-  try {
-    PinholeCamera::load(file);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
+  return test::errorMessage([&] { PinholeCamera::load(file); });
 }
 
 }  // namespace
@@ -65,7 +61,7 @@ TEST(PinholeCamera, ReadsOpenCvCalibrationSampleOutput) {
 TEST(PinholeCamera, EachMalformedFileGivesItsOwnError) {
   const auto dir = test::freshTempDir("PinholeCamera_Malformed");
   const std::string goodK = "500, 0, 320, 0, 500, 240, 0, 0, 1", D = "0, 0, 0, 0, 0";
-  EXPECT_EQ(loadError(writeFile(dir, "good.yml", cameraYaml("640", goodK, D))), "");
+  EXPECT_EQ(loadError(writeFile(dir, "good.yml", cameraYaml("640", goodK, D))), "(no error)");
   EXPECT_NE(loadError(dir / "absent.yml").find("does not exist"), std::string::npos);
   EXPECT_NE(loadError(writeFile(dir, "garbage.yml", "%YAML:1.0\n---\n: : [\n")).find("camera file"),
             std::string::npos);
@@ -170,11 +166,11 @@ TEST(PinholeCamera, UnknownKeysNameTheNearestAndTheYamlLineIsOptional) {
             std::string::npos);
   // Without "%YAML:1.0" (hand-written) the file is read the same.
   const auto bare = writeFile(dir, "bare.yml", good.substr(good.find("image_width")));
-  EXPECT_EQ(loadError(bare), "");
+  EXPECT_EQ(loadError(bare), "(no error)");
   EXPECT_DOUBLE_EQ(PinholeCamera::load(bare).distortion()[0], 0.1);
   // What OpenCV's calibration samples write beside the intrinsics is accepted.
   EXPECT_EQ(loadError(writeFile(dir, "sample.yml",
                                 good + "calibration_time: \"today\"\nnframes: 13\n"
                                        "avg_reprojection_error: 0.39\nflags: 2\n")),
-            "");
+            "(no error)");
 }

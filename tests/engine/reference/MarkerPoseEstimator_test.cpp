@@ -6,6 +6,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "ErrorMessage.hpp"
 #include "TestPaths.hpp"
 #include "engine/core/Error.hpp"
 
@@ -49,12 +50,7 @@ RigidPose facingMarker(const Vector6d& x) {
 }
 
 std::string errorOf(const MarkerPoseEstimator& est, const cv::Mat& img) {
-  try {
-    est.estimate(img, "view.png");
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
+  return test::errorMessage([&] { est.estimate(img, "view.png"); });
 }
 
 }  // namespace

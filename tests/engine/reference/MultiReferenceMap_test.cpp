@@ -6,8 +6,8 @@
 #include <fstream>
 #include <limits>
 #include <opencv2/imgcodecs.hpp>
-#include <sstream>
 
+#include "ErrorMessage.hpp"
 #include "TestPaths.hpp"
 #include "engine/core/Error.hpp"
 
@@ -57,28 +57,11 @@ MultiReferenceMap makeMap() {
 }
 
 std::string checkError(const MultiReferenceMap& m) {
-  try {
-    m.check();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
+  return test::errorMessage([&] { m.check(); });
 }
 
 std::string loadError(const std::filesystem::path& dir) {
-  try {
-    MultiReferenceMap::load(dir);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
-
-std::string readText(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
+  return test::errorMessage([&] { MultiReferenceMap::load(dir); });
 }
 
 // A copy of the map saved in dir/ok as dir/name with `text` as its map.yml.
@@ -201,7 +184,7 @@ TEST(MultiReferenceMap, PairHoldsThePointsBothViewsSee) {
 }
 
 TEST(MultiReferenceMap, CheckNamesTheBadField) {
-  EXPECT_EQ(checkError(makeMap()), "");
+  EXPECT_EQ(checkError(makeMap()), "(no error)");
   const auto broken = [](auto edit) {
     MultiReferenceMap m = makeMap();
     edit(m);
@@ -266,7 +249,7 @@ TEST(MultiReferenceMap, LoadRefusesCorruptedFilesNamingTheField) {
   const auto dir = test::freshTempDir("MultiReferenceMap_Broken");
   const MultiReferenceMap good = makeMap();
   good.save(dir / "ok");
-  const std::string yml = readText(dir / "ok" / "map.yml");
+  const std::string yml = test::readTextFile(dir / "ok" / "map.yml");
   const auto variant = [&](const std::string& name, const std::string& text) {
     return writeMapVariant(dir, good, name, text);
   };
@@ -325,7 +308,7 @@ TEST(MultiReferenceMap, LoadNamesUnknownKeysAndNeedsNoYamlLine) {
   const auto dir = test::freshTempDir("MultiReferenceMap_Strict");
   const MultiReferenceMap good = makeMap();
   good.save(dir / "ok");
-  const std::string yml = readText(dir / "ok" / "map.yml");
+  const std::string yml = test::readTextFile(dir / "ok" / "map.yml");
   const auto variant = [&](const std::string& name, const std::string& text) {
     return writeMapVariant(dir, good, name, text);
   };
@@ -352,6 +335,6 @@ TEST(MultiReferenceMap, LoadNamesUnknownKeysAndNeedsNoYamlLine) {
               "views[1].keypoints.cnt: unknown key — did you mean views[1].keypoints.count?");
   ASSERT_EQ(yml.rfind("%YAML:1.0\n", 0), 0u);
   const auto bare = variant("bare", yml.substr(10));
-  EXPECT_EQ(loadError(bare), "");
+  EXPECT_EQ(loadError(bare), "(no error)");
   EXPECT_EQ(MultiReferenceMap::load(bare).points.size(), good.points.size());
 }

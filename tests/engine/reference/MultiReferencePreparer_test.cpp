@@ -6,6 +6,7 @@
 #include <functional>
 #include <iostream>
 
+#include "ErrorMessage.hpp"
 #include "PlanarTestScene.hpp"
 #include "engine/core/Error.hpp"
 
@@ -46,15 +47,6 @@ Eigen::Vector3d onPlane(const PinholeCamera& camera, const RigidPose& T, cv::Poi
       T.rotation().transpose() * camera.K().inverse() * Eigen::Vector3d(pixel.x, pixel.y, 1.0);
   const Eigen::Vector3d c = T.cameraCentre();
   return c - ray * (c.z() / ray.z());
-}
-
-std::string errorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
 }
 
 }  // namespace
@@ -176,15 +168,15 @@ TEST(MultiReferencePreparer, TwoReferencesGiveTheTwoViewPreparationsPoints) {
 TEST(MultiReferencePreparer, BadInputsAreNamed) {
   const FourViews& s = fourViews();
   const MultiReferencePreparer preparer(s.scene.camera);
-  EXPECT_NE(errorOf([&] {
+  EXPECT_NE(test::errorMessage([&] {
               preparer.prepare({s.images[0]}, marker());
             }).find("at least 2 reference images"),
             std::string::npos);
-  const std::string count = errorOf([&] {
+  const std::string count = test::errorMessage([&] {
     preparer.prepare(s.images, {s.poses[0], s.poses[1]}, "given");
   });
   EXPECT_NE(count.find("2 poses (given) for 4 reference images"), std::string::npos) << count;
-  const std::string identical = errorOf([&] {
+  const std::string identical = test::errorMessage([&] {
     preparer.prepare({s.images[0], s.images[1], s.images[0]}, marker());
   });
   EXPECT_NE(identical.find("identical"), std::string::npos) << identical;
@@ -192,7 +184,7 @@ TEST(MultiReferencePreparer, BadInputsAreNamed) {
   // naming the pair and why.
   ReferencePreparerParams narrow;
   narrow.maxPairViewAngleDeg = 5.0;
-  const std::string skipped = errorOf([&] {
+  const std::string skipped = test::errorMessage([&] {
     MultiReferencePreparer(s.scene.camera, narrow).prepare({s.images[0], s.images[1]}, marker());
   });
   EXPECT_NE(skipped.find("'view_0.png'-'view_1.png' skipped (view angle"), std::string::npos)

@@ -7,6 +7,7 @@
 #include <opencv2/aruco.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "engine/geometry/LookAt.hpp"
 #include "engine/geometry/PinholeCamera.hpp"
 #include "engine/geometry/RigidPose.hpp"
 #include "engine/reference/MarkerSpec.hpp"
@@ -53,14 +54,7 @@ class PlanarTestScene {
 
   // World->camera pose of a camera at `eye` looking at `target`, image up = world +y.
   static RigidPose lookAt(const Eigen::Vector3d& eye, const Eigen::Vector3d& target) {
-    const Eigen::Vector3d z = (target - eye).normalized();
-    const Eigen::Vector3d x = Eigen::Vector3d(0, -1, 0).cross(z).normalized();
-    const Eigen::Vector3d y = z.cross(x);
-    Eigen::Matrix3d R;
-    R.row(0) = x;
-    R.row(1) = y;
-    R.row(2) = z;
-    return RigidPose(R, -R * eye);
+    return lookAtPose(eye, target, Eigen::Vector3d::UnitY());
   }
 
   // Texture pixel (u, v) (centres at integers) -> world (x, y, 0): x right, y up.

@@ -9,6 +9,7 @@
 #include <random>
 
 #include "engine/core/Error.hpp"
+#include "engine/geometry/LookAt.hpp"
 #include "engine/reference/MapPointReprojectionCost.hpp"
 
 using namespace reftrack;
@@ -19,14 +20,7 @@ constexpr double kDeg = 3.14159265358979323846 / 180.0;
 
 // World->camera pose (OpenCV axes) of a camera at eye looking at target, world z up.
 RigidPose lookAt(const Eigen::Vector3d& eye, const Eigen::Vector3d& target) {
-  const Eigen::Vector3d z = (target - eye).normalized();
-  const Eigen::Vector3d x = z.cross(Eigen::Vector3d::UnitZ()).normalized();
-  const Eigen::Vector3d y = z.cross(x);
-  Eigen::Matrix3d R;
-  R.row(0) = x.transpose();
-  R.row(1) = y.transpose();
-  R.row(2) = z.transpose();
-  return RigidPose(R, -R * eye);
+  return lookAtPose(eye, target, Eigen::Vector3d::UnitZ());
 }
 
 // `pose` moved by `metres` along a random direction and turned by `degrees` about a random axis.

@@ -4,8 +4,8 @@
 
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
-#include <sstream>
 
+#include "ErrorMessage.hpp"
 #include "TestPaths.hpp"
 #include "engine/core/Error.hpp"
 
@@ -30,12 +30,19 @@ ReferenceMap makeMap() {
 }
 
 std::string loadError(const std::filesystem::path& dir) {
-  try {
-    ReferenceMap::load(dir);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
+  return test::errorMessage([&] { ReferenceMap::load(dir); });
+}
+
+// A copy of the map saved in dir/ok as dir/name with `text` as its map.yml (and its images, or
+// none).
+std::filesystem::path writeMapVariant(const std::filesystem::path& dir, const std::string& name,
+                                      const std::string& text, bool withImages) {
+  std::filesystem::create_directories(dir / name);
+  std::ofstream(dir / name / "map.yml") << text;
+  if (withImages)
+    for (const char* image : {"reference_a.png", "reference_b.png"})
+      std::filesystem::copy_file(dir / "ok" / image, dir / name / image);
+  return dir / name;
 }
 
 }  // namespace
@@ -59,21 +66,10 @@ TEST(ReferenceMap, RoundTripsEveryField) {
 TEST(ReferenceMap, RefusesBrokenMapsWithTheirOwnMessages) {
   const auto dir = test::freshTempDir("ReferenceMap_Broken");
   makeMap().save(dir / "ok");
-  const std::string yml = [&] {
-    std::ifstream in(dir / "ok" / "map.yml");
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-  }();
+  const std::string yml = test::readTextFile(dir / "ok" / "map.yml");
   const auto variant = [&](const std::string& name, const std::string& text,
                            bool withImages = true) {
-    std::filesystem::create_directories(dir / name);
-    std::ofstream(dir / name / "map.yml") << text;
-    if (withImages) {
-      std::filesystem::copy_file(dir / "ok" / "reference_a.png", dir / name / "reference_a.png");
-      std::filesystem::copy_file(dir / "ok" / "reference_b.png", dir / name / "reference_b.png");
-    }
-    return dir / name;
+    return writeMapVariant(dir, name, text, withImages);
   };
   EXPECT_NE(loadError(dir / "absent").find("does not exist"), std::string::npos);
   EXPECT_NE(loadError(variant("truncated", yml.substr(0, yml.size() / 2))).find("truncated"),
@@ -96,18 +92,9 @@ TEST(ReferenceMap, RefusesIdenticalReferencePoses) {
 TEST(ReferenceMap, LoadNamesUnknownKeysAndNeedsNoYamlLine) {
   const auto dir = test::freshTempDir("ReferenceMap_Strict");
   makeMap().save(dir / "ok");
-  const std::string yml = [&] {
-    std::ifstream in(dir / "ok" / "map.yml");
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-  }();
+  const std::string yml = test::readTextFile(dir / "ok" / "map.yml");
   const auto variant = [&](const std::string& name, const std::string& text) {
-    std::filesystem::create_directories(dir / name);
-    std::ofstream(dir / name / "map.yml") << text;
-    for (const char* image : {"reference_a.png", "reference_b.png"})
-      std::filesystem::copy_file(dir / "ok" / image, dir / name / image);
-    return dir / name;
+    return writeMapVariant(dir, name, text, true);
   };
   std::string misspelt = yml;
   misspelt.replace(misspelt.find("pose_source:"), 12, "pose_sourse:");
@@ -115,5 +102,5 @@ TEST(ReferenceMap, LoadNamesUnknownKeysAndNeedsNoYamlLine) {
                 .find("map.yml': pose_sourse: unknown key — did you mean pose_source?"),
             std::string::npos);
   ASSERT_EQ(yml.rfind("%YAML:1.0\n", 0), 0u);
-  EXPECT_EQ(loadError(variant("bare", yml.substr(10))), "");
+  EXPECT_EQ(loadError(variant("bare", yml.substr(10))), "(no error)");
 }

@@ -6,6 +6,7 @@
 #include <functional>
 #include <opencv2/imgproc.hpp>
 
+#include "ErrorMessage.hpp"
 #include "PlanarTestScene.hpp"
 #include "TestPaths.hpp"
 #include "engine/core/Error.hpp"
@@ -33,15 +34,6 @@ struct MarkerScene {
 const MarkerScene& markerScene() {
   static const MarkerScene s;
   return s;
-}
-
-std::string errorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
 }
 
 cv::Mat hideMarker(const MarkerScene& s, const RigidPose& T, const cv::Mat& image) {
@@ -121,29 +113,30 @@ TEST(ReferencePreparer, EachBadInputHasItsOwnMessage) {
   const ReferenceImage hiddenA{hideMarker(s, s.T_A, s.a.image), "hidden_a.png"};
   const ReferenceImage hiddenB{hideMarker(s, s.T_B, s.b.image), "hidden_b.png"};
 
-  const std::string none = errorOf([&] { preparer.prepare(hiddenA, hiddenB, marker()); });
+  const std::string none =
+      test::errorMessage([&] { preparer.prepare(hiddenA, hiddenB, marker()); });
   EXPECT_NE(none.find("hidden_a.png"), std::string::npos) << none;
 
-  const std::string oneOnly = errorOf([&] { preparer.prepare(s.a, hiddenB, marker()); });
+  const std::string oneOnly = test::errorMessage([&] { preparer.prepare(s.a, hiddenB, marker()); });
   EXPECT_NE(oneOnly.find("hidden_b.png"), std::string::npos) << oneOnly;
   EXPECT_EQ(oneOnly.find("view_a.png"), std::string::npos) << oneOnly;
 
-  const std::string identical = errorOf([&] { preparer.prepare(s.a, s.a, marker()); });
+  const std::string identical = test::errorMessage([&] { preparer.prepare(s.a, s.a, marker()); });
   EXPECT_NE(identical.find("identical"), std::string::npos) << identical;
 
   // Same place, different images (e.g. lighting changed): no baseline either.
   cv::Mat brighter = s.a.image + cv::Scalar(3);
-  const std::string samePlace = errorOf([&] {
+  const std::string samePlace = test::errorMessage([&] {
     preparer.prepare(s.a, {brighter, "brighter.png"}, s.T_A, s.T_A, "given");
   });
   EXPECT_NE(samePlace.find("mm apart"), std::string::npos) << samePlace;
 
   const ReferencePreparer halfCamera(s.scene.camera.scaled(0.5));
-  const std::string size = errorOf([&] { halfCamera.prepare(s.a, s.b, marker()); });
+  const std::string size = test::errorMessage([&] { halfCamera.prepare(s.a, s.b, marker()); });
   EXPECT_NE(size.find("640x480"), std::string::npos) << size;
   EXPECT_NE(size.find("320x240"), std::string::npos) << size;
 
-  const std::string empty = errorOf([&] {
+  const std::string empty = test::errorMessage([&] {
     preparer.prepare({cv::Mat(), "gone.png"}, s.b, marker());
   });
   EXPECT_NE(empty.find("gone.png"), std::string::npos) << empty;
@@ -152,17 +145,18 @@ TEST(ReferencePreparer, EachBadInputHasItsOwnMessage) {
   const RigidPose swapped =
       s.T_B * RigidPose::fromVector6((Vector6d() << 0.1, 0, 0, 0, 0.2, 0).finished());
   const std::string wrongPoses =
-      errorOf([&] { preparer.prepare(s.a, s.b, s.T_A, swapped, "bad"); });
+      test::errorMessage([&] { preparer.prepare(s.a, s.b, s.T_A, swapped, "bad"); });
   EXPECT_NE(wrongPoses.find("matches survived"), std::string::npos) << wrongPoses;
 }
 
 TEST(ReferencePreparerParams, CheckNamesTheFieldAndYamlRoundTrips) {
   ReferencePreparerParams p;
   p.minMatches = -1;
-  EXPECT_NE(errorOf([&] { p.check(); }).find("preparation.min_matches"), std::string::npos);
+  EXPECT_NE(test::errorMessage([&] { p.check(); }).find("preparation.min_matches"),
+            std::string::npos);
   p = {};
   p.corners.countAt320x240 = 1;
-  EXPECT_NE(errorOf([&] { p.check(); }).find("corners.count"), std::string::npos);
+  EXPECT_NE(test::errorMessage([&] { p.check(); }).find("corners.count"), std::string::npos);
 
   ReferencePreparerParams q;
   q.matching.minScore = 0.65;
@@ -181,7 +175,8 @@ TEST(ReferencePreparerParams, CheckNamesTheFieldAndYamlRoundTrips) {
     std::ofstream f(dir / "bad.yml");
     f << "%YAML:1.0\n---\nmatching:\n  min_depth_m: -3\n";
   }
-  const std::string bad = errorOf([&] { ReferencePreparerParams::load(dir / "bad.yml"); });
+  const std::string bad =
+      test::errorMessage([&] { ReferencePreparerParams::load(dir / "bad.yml"); });
   EXPECT_NE(bad.find("bad.yml"), std::string::npos) << bad;
   EXPECT_NE(bad.find("matching.min_depth_m"), std::string::npos) << bad;
 }
@@ -190,7 +185,7 @@ TEST(ReferencePreparerParams, UnknownKeysNameTheNearestAndTheYamlLineIsOptional)
   const auto dir = test::freshTempDir("ReferencePreparerParams_strict");
   const auto load = [&](const std::string& body) {
     std::ofstream(dir / "p.yml") << body;
-    return errorOf([&] { ReferencePreparerParams::load(dir / "p.yml"); });
+    return test::errorMessage([&] { ReferencePreparerParams::load(dir / "p.yml"); });
   };
   EXPECT_NE(load("preparation:\n  min_baseline: 0.1\n")
                 .find("preparation.min_baseline: unknown key — did you mean "
@@ -206,7 +201,7 @@ TEST(ReferencePreparerParams, UnknownKeysNameTheNearestAndTheYamlLineIsOptional)
   const cv::FileStorage extend("%YAML:1.0\nextension: {max_angle_deg: 10}\n",
                                cv::FileStorage::READ | cv::FileStorage::MEMORY);
   ReferencePreparerParams p;
-  EXPECT_NE(errorOf([&] { p.read(extend.root()); }).find("extension: unknown section"),
+  EXPECT_NE(test::errorMessage([&] { p.read(extend.root()); }).find("extension: unknown section"),
             std::string::npos);
-  EXPECT_EQ(errorOf([&] { p.read(extend.root(), {"extension"}); }), "(no error)");
+  EXPECT_EQ(test::errorMessage([&] { p.read(extend.root(), {"extension"}); }), "(no error)");
 }

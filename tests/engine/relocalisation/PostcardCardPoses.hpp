@@ -1,7 +1,7 @@
 #pragma once
 // The postcard clip (../shared/data/planar-videos/video-postcard.mp4, 161 frames, 640x480, K
-// guessed as fx = fy = 840 at the centre) with a pose per frame from the card's corners, as in
-// tests/engine/tracking/PoseTrackerRealFootage_test.cpp: corners clicked on frame 0, followed by
+// guessed as fx = fy = 840 at the centre) with a pose per frame from the card's corners (the
+// real-footage tests' ground truth): corners clicked on frame 0, followed by
 // the homography tracker, refined by cornerSubPix; the card is a rectangle of short side 0.105 m
 // whose aspect ratio fits the corners best; solvePnP (IPPE) gives each frame's world->camera pose.
 #include <algorithm>
@@ -26,6 +26,8 @@ struct PostcardCardPoses {
   std::vector<cv::Point3f> card;                                   // the corners, world frame
   std::vector<std::optional<std::array<cv::Point2f, 4>>> corners;  // per frame, none if lost
   std::vector<std::optional<RigidPose>> poses;                     // per frame, from the corners
+  double aspectRatio = 0.0;  // of the card's rectangle (long / short side), best fit
+  double aspectRms = 0.0;    // reprojection RMS (px) of that fit over a spread of frames
 
   // nullopt when the clip is not available.
   static std::optional<PostcardCardPoses> load() {
@@ -104,6 +106,8 @@ struct PostcardCardPoses {
       }
     }
     card = rectangle(0.105, 0.105 * bestRatio);
+    aspectRatio = bestRatio;
+    aspectRms = bestRms;
     poses.assign(frames.size(), std::nullopt);
     for (std::size_t k = 0; k < frames.size(); ++k) {
       if (!corners[k]) continue;

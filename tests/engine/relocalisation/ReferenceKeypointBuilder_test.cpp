@@ -7,26 +7,13 @@
 #include "TestPaths.hpp"
 #include "engine/core/Error.hpp"
 #include "engine/relocalisation/CornerWorld.hpp"
+#include "engine/relocalisation/RelocalisationTestScene.hpp"
 #include "engine/relocalisation/Relocaliser.hpp"
 
 namespace reftrack {
 namespace {
 
 using test::CornerWorld;
-
-MultiReferenceMap cornerMap(const CornerWorld& world, int views) {
-  MultiReferenceMap map;
-  map.camera = world.camera();
-  const std::vector<RigidPose> poses = CornerWorld::referencePoses(views, 1.4);
-  for (int i = 0; i < views; ++i) {
-    ReferenceView v;
-    v.name = "reference_" + std::to_string(i) + ".png";
-    v.T = poses[static_cast<std::size_t>(i)];
-    v.image = world.render(v.T, 10 + i);
-    map.views.push_back(v);
-  }
-  return map;
-}
 
 // Distance of a world point to the nearest face of the room corner (each face is a plane through
 // the origin: x = 0, y = 0 or z = 0).
@@ -73,7 +60,7 @@ TEST(TriangulateKeypointMatch, ExactProjectionsGiveThePointAndBadOnesNone) {
 
 TEST(BuildReferenceKeypoints, PointsLieOnTheSceneAndReprojectOntoTheirKeypoints) {
   const CornerWorld world;
-  MultiReferenceMap map = cornerMap(world, 4);
+  MultiReferenceMap map = test::cornerWorldViews(world, 4);
   RelocalisationParams params;
   buildReferenceKeypoints(map, params);
   EXPECT_EQ(map.keypointKind, "orb");
@@ -116,7 +103,7 @@ TEST(BuildReferenceKeypoints, PointsLieOnTheSceneAndReprojectOntoTheirKeypoints)
 
 TEST(BuildReferenceKeypoints, RefusesOneViewAndWrongSizes) {
   const CornerWorld world;
-  MultiReferenceMap map = cornerMap(world, 2);
+  MultiReferenceMap map = test::cornerWorldViews(world, 2);
   MultiReferenceMap one = map;
   one.views.pop_back();
   EXPECT_THROW(buildReferenceKeypoints(one, RelocalisationParams{}), Error);
@@ -137,7 +124,7 @@ namespace {
 // relocalises a frame to the very same pose.
 TEST(BuildReferenceKeypoints, LayerSurvivesSavingAndLoadingTheMap) {
   const CornerWorld world;
-  MultiReferenceMap map = cornerMap(world, 3);
+  MultiReferenceMap map = test::cornerWorldViews(world, 3);
   buildReferenceKeypoints(map, RelocalisationParams{});
   const auto dir = test::freshTempDir("ReferenceKeypointBuilder_save");
   map.save(dir / "map");

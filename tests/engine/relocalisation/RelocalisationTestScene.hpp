@@ -12,8 +12,8 @@ namespace reftrack::test {
 
 inline constexpr double kReferenceDistanceM = 1.4;
 
-inline MultiReferenceMap cornerWorldMap(const CornerWorld& world, int views,
-                                        const RelocalisationParams& params) {
+// The N reference views alone: images and exact poses, no keypoint layer yet.
+inline MultiReferenceMap cornerWorldViews(const CornerWorld& world, int views) {
   MultiReferenceMap map;
   map.camera = world.camera();
   const std::vector<RigidPose> poses = CornerWorld::referencePoses(views, kReferenceDistanceM);
@@ -25,6 +25,12 @@ inline MultiReferenceMap cornerWorldMap(const CornerWorld& world, int views,
     map.views.push_back(v);
   }
   map.poseSource = "synthetic room corner";
+  return map;
+}
+
+inline MultiReferenceMap cornerWorldMap(const CornerWorld& world, int views,
+                                        const RelocalisationParams& params) {
+  MultiReferenceMap map = cornerWorldViews(world, views);
   buildReferenceKeypoints(map, params);
   return map;
 }

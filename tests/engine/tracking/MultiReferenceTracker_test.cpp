@@ -13,6 +13,8 @@ namespace reftrack {
 namespace {
 
 using test::PlaneMultiWorld;
+using test::rotationErrorDeg;
+using test::translationErrorMm;
 
 // Four references 0.2 m apart along x, each looking at the plane point 1 m in front of A.
 PlaneMultiWorld fourReferences() { return PlaneMultiWorld({-0.3, -0.1, 0.1, 0.3}); }
@@ -30,19 +32,6 @@ RigidPose rolledNearReferenceThree() {
   const RigidPose roll(Eigen::AngleAxisd(35.0 * CV_PI / 180.0, Eigen::Vector3d::UnitZ()).matrix(),
                        Eigen::Vector3d(0.0, 0.0, 0.0));
   return roll * PlaneMultiWorld::cameraAt(0.27, 0.02, -0.15);
-}
-
-// The camera (A -> camera) at x along the references' line, bobbing a little up and down and in
-// depth, looking at the plane.
-RigidPose along(double x, int k) {
-  return PlaneMultiWorld::cameraAt(x, 0.02 * std::sin(0.3 * k), 0.03 * std::sin(0.17 * k));
-}
-
-double translationErrorMm(const RigidPose& estimate, const RigidPose& truth) {
-  return RigidPose::translationDistance(estimate, truth) * 1000.0;
-}
-double rotationErrorDeg(const RigidPose& estimate, const RigidPose& truth) {
-  return RigidPose::rotationDistance(estimate, truth) * 180.0 / CV_PI;
 }
 
 TEST(PlaneMultiWorld, NeighbouringReferencesShareManyExactPoints) {
@@ -75,7 +64,7 @@ TEST(MultiReferenceTracker, TracksAcrossPairsWithHandOversAgainstExactGroundTrut
   double maxT = 0.0, maxR = 0.0;
   const int frames = 55;
   for (int k = 0; k < frames; ++k) {
-    const RigidPose truth = along(-0.28 + 0.01 * k, k);
+    const RigidPose truth = PlaneMultiWorld::cameraAlong(-0.28 + 0.01 * k, k);
     const MultiReferenceResult r = tracker.process(world.render(truth, 100 + k));
     ASSERT_EQ(r.tracking.state, TrackingState::Tracking)
         << "frame " << k << ": " << r.tracking.message;
@@ -106,8 +95,10 @@ TEST(MultiReferenceTracker, ComesBackOnTheFirstOrSecondClearFrameAfterBlackFrame
   MultiReferenceTracker tracker(world.map(), TrackerParams{});
   int k = 0;
   for (; k < 6; ++k)
-    ASSERT_EQ(tracker.process(world.render(along(-0.1 + 0.01 * k, k), 200 + k)).tracking.state,
-              TrackingState::Tracking)
+    ASSERT_EQ(
+        tracker.process(world.render(PlaneMultiWorld::cameraAlong(-0.1 + 0.01 * k, k), 200 + k))
+            .tracking.state,
+        TrackingState::Tracking)
         << k;
   for (int b = 0; b < 4; ++b, ++k) {
     const MultiReferenceResult r =
@@ -120,9 +111,10 @@ TEST(MultiReferenceTracker, ComesBackOnTheFirstOrSecondClearFrameAfterBlackFrame
   int clear = 0;
   MultiReferenceResult r;
   for (; clear < 2 && r.tracking.state != TrackingState::Tracking; ++clear, ++k)
-    r = tracker.process(world.render(along(-0.1 + 0.01 * k, k), 200 + k));
+    r = tracker.process(world.render(PlaneMultiWorld::cameraAlong(-0.1 + 0.01 * k, k), 200 + k));
   ASSERT_EQ(r.tracking.state, TrackingState::Tracking) << r.tracking.message;
-  const RigidPose truth = world.worldToCamera(along(-0.1 + 0.01 * (k - 1), k - 1));
+  const RigidPose truth =
+      world.worldToCamera(PlaneMultiWorld::cameraAlong(-0.1 + 0.01 * (k - 1), k - 1));
   EXPECT_LT(translationErrorMm(*r.tracking.worldToCamera, truth), 2.0);
   EXPECT_LT(rotationErrorDeg(*r.tracking.worldToCamera, truth), 0.1);
   RecordProperty("clear_frames_to_recover", std::to_string(clear));
@@ -168,11 +160,12 @@ TEST(MultiReferenceTracker, ASmallTrackerCacheStillTracks) {
   MultiReferenceTracker tracker(world.map(), params);
   for (int k = 0; k < 55; k += 3) {
     const MultiReferenceResult r =
-        tracker.process(world.render(along(-0.28 + 0.01 * k, k), 400 + k));
+        tracker.process(world.render(PlaneMultiWorld::cameraAlong(-0.28 + 0.01 * k, k), 400 + k));
     ASSERT_EQ(r.tracking.state, TrackingState::Tracking) << k << ": " << r.tracking.message;
-    EXPECT_LT(translationErrorMm(*r.tracking.worldToCamera,
-                                 world.worldToCamera(along(-0.28 + 0.01 * k, k))),
-              2.0);
+    EXPECT_LT(
+        translationErrorMm(*r.tracking.worldToCamera,
+                           world.worldToCamera(PlaneMultiWorld::cameraAlong(-0.28 + 0.01 * k, k))),
+        2.0);
   }
 }
 
@@ -231,8 +224,10 @@ TEST(MultiReferenceTracker, RelocalisesAfterBlackFramesOnTheFirstClearFrame) {
     MultiReferenceTracker tracker(map, params);
     int k = 0;
     for (; k < 4; ++k)
-      ASSERT_EQ(tracker.process(world.render(along(-0.1 + 0.01 * k, k), 600 + k)).tracking.state,
-                TrackingState::Tracking)
+      ASSERT_EQ(
+          tracker.process(world.render(PlaneMultiWorld::cameraAlong(-0.1 + 0.01 * k, k), 600 + k))
+              .tracking.state,
+          TrackingState::Tracking)
           << k;
     const int attemptsBefore = tracker.relocalisationAttempts();
     int blackAttempts = 0;
@@ -248,7 +243,7 @@ TEST(MultiReferenceTracker, RelocalisesAfterBlackFramesOnTheFirstClearFrame) {
     EXPECT_EQ(tracker.relocalisationAttempts() - attemptsBefore, blackAttempts);
     // The clear frame after them is due for an attempt with every = 1 (and with 3: the black
     // frames' last attempt was two frames before) and relocalises.
-    const RigidPose truth = along(-0.1 + 0.01 * k, k);
+    const RigidPose truth = PlaneMultiWorld::cameraAlong(-0.1 + 0.01 * k, k);
     const MultiReferenceResult r = tracker.process(world.render(truth, 600 + k));
     ASSERT_EQ(r.tracking.state, TrackingState::Tracking) << every << ": " << r.tracking.message;
     EXPECT_TRUE(r.relocalisation.succeeded);
@@ -265,12 +260,13 @@ TEST(MultiReferenceTracker, ParameterChangesTakeEffectOnTheNextFrame) {
   TrackerParams params;
   params.references.reseedFrames = 0;
   MultiReferenceTracker tracker(withKeypoints(world), params);
-  ASSERT_EQ(tracker.process(world.render(along(0.0, 0), 700)).tracking.state,
+  ASSERT_EQ(tracker.process(world.render(PlaneMultiWorld::cameraAlong(0.0, 0), 700)).tracking.state,
             TrackingState::Tracking);
   params.references.switchMargin = 0.5;
   tracker.setParams(params);
-  ASSERT_EQ(tracker.process(world.render(along(0.01, 1), 701)).tracking.state,
-            TrackingState::Tracking);
+  ASSERT_EQ(
+      tracker.process(world.render(PlaneMultiWorld::cameraAlong(0.01, 1), 701)).tracking.state,
+      TrackingState::Tracking);
   const cv::Mat black(world.size, CV_8UC3, cv::Scalar::all(0));
   tracker.process(black);  // lost
   params.relocalisation.enabled = false;

@@ -2,10 +2,12 @@
 // PlaneMultiWorld: PlaneWorld's textured plane seen by N reference cameras — an exact synthetic
 // MultiReferenceMap for the multi-reference tracker tests (see below).
 #include <algorithm>
+#include <cmath>
 #include <functional>
 #include <numeric>
 
 #include "PlaneWorld.hpp"
+#include "engine/geometry/LookAt.hpp"
 #include "engine/reference/MultiReferenceMap.hpp"
 
 namespace reftrack::test {
@@ -13,14 +15,7 @@ namespace reftrack::test {
 // A -> camera pose of a camera at `eye` (camera A's frame) looking at `target`, image x along
 // A's x as far as possible.
 inline RigidPose lookAtInA(const Eigen::Vector3d& eye, const Eigen::Vector3d& target) {
-  const Eigen::Vector3d z = (target - eye).normalized();
-  const Eigen::Vector3d x = Eigen::Vector3d(0, 1, 0).cross(z).normalized();
-  const Eigen::Vector3d y = z.cross(x);
-  Eigen::Matrix3d R;
-  R.row(0) = x;
-  R.row(1) = y;
-  R.row(2) = z;
-  return RigidPose(R, -R * eye);
+  return lookAtPose(eye, target, Eigen::Vector3d(0, -1, 0));  // A's image up is -y
 }
 
 // References i = 0..N-1 at (x_i, 0, 0) in camera A's frame, all looking at the plane point in
@@ -35,6 +30,11 @@ struct PlaneMultiWorld : PlaneWorld {
   }
   static RigidPose cameraAt(double x, double y = 0.0, double z = 0.0) {
     return lookAtInA(Eigen::Vector3d(x, y, z), Eigen::Vector3d(0.0, 0.0, 1.0));
+  }
+  // Frame k of a path along the references' line: the camera at x, bobbing a little up and down
+  // and in depth, looking at the plane.
+  static RigidPose cameraAlong(double x, int k) {
+    return cameraAt(x, 0.02 * std::sin(0.3 * k), 0.03 * std::sin(0.17 * k));
   }
   RigidPose worldToCamera(const RigidPose& fromA) const { return fromA * T_A; }
 
@@ -113,5 +113,14 @@ struct PlaneMultiWorld : PlaneWorld {
     return m;
   }
 };
+
+// Pose errors against the exact ground truth: camera translation in millimetres, rotation in
+// degrees.
+inline double translationErrorMm(const RigidPose& estimate, const RigidPose& truth) {
+  return RigidPose::translationDistance(estimate, truth) * 1000.0;
+}
+inline double rotationErrorDeg(const RigidPose& estimate, const RigidPose& truth) {
+  return RigidPose::rotationDistance(estimate, truth) * 180.0 / CV_PI;
+}
 
 }  // namespace reftrack::test

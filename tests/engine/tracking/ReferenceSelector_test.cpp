@@ -6,6 +6,7 @@
 #include <random>
 
 #include "engine/core/Error.hpp"
+#include "engine/geometry/LookAt.hpp"
 
 namespace reftrack {
 namespace {
@@ -13,14 +14,7 @@ namespace {
 // World->camera pose of a camera at `eye` looking at `target` (horizontal views: x axis in the
 // z = 0 plane).
 RigidPose lookAt(const Eigen::Vector3d& eye, const Eigen::Vector3d& target) {
-  const Eigen::Vector3d z = (target - eye).normalized();
-  const Eigen::Vector3d x = Eigen::Vector3d(0, 0, 1).cross(z).normalized();
-  const Eigen::Vector3d y = z.cross(x);
-  Eigen::Matrix3d R;
-  R.row(0) = x;
-  R.row(1) = y;
-  R.row(2) = z;
-  return RigidPose(R, -R * eye);
+  return lookAtPose(eye, target, Eigen::Vector3d(0, 0, -1));
 }
 
 // N references on an arc of radius 1 m in the z = 0 plane, `stepDeg` apart, all looking at the

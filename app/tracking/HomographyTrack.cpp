@@ -1,0 +1,103 @@
+#include "app/tracking/HomographyTrack.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <opencv2/imgcodecs.hpp>
+
+#include "app/cli/Interruption.hpp"
+#include "app/cli/ProgressBar.hpp"
+#include "app/sources/InputCamera.hpp"
+#include "app/tracking/HomographyOverlay.hpp"
+#include "app/tracking/HomographyTrackCsv.hpp"
+#include "app/tracking/TrackInput.hpp"
+#include "app/viewer/HomographyFrameTracker.hpp"
+#include "app/viewer/VideoRecorder.hpp"
+#include "engine/core/Error.hpp"
+#include "render/context/GlContext.hpp"
+
+namespace reftrack::app {
+
+HomographyTrackSummary runHomographyTrack(const HomographyTrackOptions& o) {
+  cv::Mat reference;
+  try {
+    reference = cv::imread(o.reference.string(), cv::IMREAD_COLOR);
+  } catch (const cv::Exception& e) {
+    throw Error("reference image '" + o.reference.string() + "' cannot be read: " + e.err);
+  }
+  if (reference.empty())
+    throw Error("reference image '" + o.reference.string() + "' is missing or not an image");
+  TrackerParams params = o.params.empty() ? TrackerParams{} : TrackerParams::load(o.params);
+  params.mode = TrackingMode::Homography;
+  params.check();
+  const AnnotationSet labels = o.labels.empty() ? AnnotationSet{} : AnnotationSet::load(o.labels);
+
+  TrackInput input(o.input, reference.size(), "the reference '" + o.reference.string() + "' is",
+                   o.maxFrames, !o.record.empty());
+
+  // A calibrated camera enables the rotation-only model; without one, the overlay still needs a
+  // camera of the frame size (homography mode draws no 3-D content, so any pinhole serves).
+  // Without --camera, a euroc: input brings its sensor.yaml camera (cameraFromInput says so).
+  const std::optional<PinholeCamera> calibrated =
+      o.camera.empty() ? cameraFromInput(o.input)
+                       : std::optional<PinholeCamera>(PinholeCamera::load(o.camera));
+  HomographyFrameTracker tracker(reference, params, calibrated, labels);
+  const PinholeCamera camera =
+      calibrated ? *calibrated : PinholeCamera::fromFieldOfView(reference.size(), 60.0);
+  std::unique_ptr<HomographyOverlay> overlay;
+  std::unique_ptr<VideoRecorder> recorder;
+  const OverlaySettings settings;
+  if (!o.record.empty()) {
+    overlay = std::make_unique<HomographyOverlay>();
+    recorder = std::make_unique<VideoRecorder>(o.record, input.source().fps(), reference.size());
+  }
+
+  std::vector<HomographyFrameRecord> records;
+  ProgressBar progress("track homography", static_cast<std::size_t>(input.expectedCount()));
+  HomographyTrackSummary summary;
+  std::vector<double> ms;
+  const InterruptibleWork interruptible;  // Ctrl-C ends the loop; the outputs are then finished
+  while (!interruptRequested()) {
+    const std::optional<Frame> frame = input.next();
+    if (!frame) break;
+    const auto t0 = std::chrono::steady_clock::now();
+    const TrackingResult result = tracker.process(frame->image, frame->index, frame->timestamp);
+    const double elapsed =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    const HomographyTrackResult& r = tracker.last();
+    HomographyFrameRecord record;
+    record.index = frame->index;
+    record.timestamp = frame->timestamp;
+    record.tracked = r.tracked;
+    record.inlierRatio = r.inlierRatio;
+    if (r.tracked) record.H = r.H;
+    if (!r.tracked) record.reason = r.failure;
+    record.milliseconds = elapsed;
+    records.push_back(record);
+    ms.push_back(elapsed);
+    summary.tracked += r.tracked ? 1 : 0;
+    if (recorder) {
+      const std::optional<cv::Matx33d> H =
+          r.tracked ? std::optional<cv::Matx33d>(r.H) : std::nullopt;
+      const cv::Mat composite = overlay->composite(
+          frame->image, camera, result, settings,
+          "frame " + std::to_string(frame->index) + "  " + result.status, H, labels);
+      recorder->write(composite, frame->timestamp, std::nullopt);
+    }
+    ++summary.frames;
+    progress.advance();
+  }
+  progress.finish();
+  input.requireFrames();
+  // A recording that cannot be finished (full disk) must not cost the CSV.
+  const std::string recordingError = closeRecording(recorder.get());
+  if (!o.csv.empty()) writeHomographyCsv(o.csv, records);
+  if (!recordingError.empty()) throw Error(recordingError);
+  input.throwIfCutShort();
+  std::nth_element(ms.begin(), ms.begin() + static_cast<long>(ms.size() / 2), ms.end());
+  summary.medianMs = ms[ms.size() / 2];
+  return summary;
+}
+
+}  // namespace reftrack::app
