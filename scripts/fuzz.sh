@@ -3,7 +3,9 @@
 # own build folder) and runs each for SECONDS (default 60) from its seed corpus in
 # tests/fuzz/corpus/<target>/. Prints the executions per target; exits 1 on any crash, hang
 # (> 1 s per input) or leak, leaving the input in $build/artifacts/<target>/.
-# Usage: scripts/fuzz.sh [SECONDS] [TARGET...]   (REFTRACK_FUZZ_BUILD_DIR, default build-fuzz)
+# Usage: scripts/fuzz.sh [SECONDS] [TARGET...]   (REFTRACK_FUZZ_BUILD_DIR, default build-fuzz;
+# REFTRACK_FUZZ_RUNS=N stops each target after N executions, e.g. `REFTRACK_FUZZ_RUNS=1000000
+# scripts/fuzz.sh 0 fuzz_camera_file` with no time limit)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 seconds="${1:-60}"
@@ -35,7 +37,7 @@ for target in "${targets[@]}"; do
   if ! ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
     "$build/tests/fuzz/$target" "$corpus" "$root/tests/fuzz/corpus/$name" \
     -max_total_time="$seconds" -timeout=1 -rss_limit_mb=2048 -print_final_stats=1 \
-    -artifact_prefix="$artifacts" >"$log" 2>&1; then
+    -artifact_prefix="$artifacts" ${REFTRACK_FUZZ_RUNS:+-runs="$REFTRACK_FUZZ_RUNS"} >"$log" 2>&1; then
     result="FAILED (see $log and $artifacts)"
     failed+=("$target")
   fi
