@@ -70,16 +70,11 @@ class Validator {
     }
     if (atEnd()) return;
     const char c = peek();
-    if (c == '{') {
-      flowCollection(1);
-      endOfInlineValue();
-      skipBlank();
-      if (!atEnd())
-        fail(
-            "text after the end of the top-level { } map: a file holds one map and nothing "
-            "after it");
-      return;
-    }
+    // OpenCV reads a top-level { } only when it is the last line or follows '---'.
+    if (c == '{')
+      fail(
+          "a top-level { } map (or JSON) is not supported: write 'key: value' lines starting at "
+          "column 1");
     if (c == '<') fail("this looks like XML; reftrack reads YAML only ('key: value' lines)");
     if (c == '-' || c == '[') fail("the top level must be a map of 'key: value' lines, not a list");
     if (col_ != 0)
