@@ -3,7 +3,11 @@
 # own build folder) and runs each for SECONDS (default 60) from its seed corpus in
 # tests/fuzz/corpus/<target>/. Prints the executions per target; exits 1 on any crash, hang
 # (> 1 s per input) or leak, leaving the input in $build/artifacts/<target>/.
-# Usage: scripts/fuzz.sh [SECONDS] [TARGET...]   (REFTRACK_FUZZ_BUILD_DIR, default build-fuzz)
+# Usage: scripts/fuzz.sh [SECONDS] [TARGET...]   (REFTRACK_FUZZ_BUILD_DIR, default build-fuzz;
+# REFTRACK_FUZZ_RUNS=N stops each target after N executions, e.g. `REFTRACK_FUZZ_RUNS=1000000
+# scripts/fuzz.sh 0 fuzz_camera_file` with no time limit; REFTRACK_FUZZ_TIMEOUT=S (default 1)
+# for a machine so loaded that a process can be starved past a 1-s wall-clock alarm: inputs slower
+# than 1 s are then still saved as slow-unit-* in the artifacts and counted in the result)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 seconds="${1:-60}"
@@ -34,11 +38,14 @@ for target in "${targets[@]}"; do
   result=ok
   if ! ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
     "$build/tests/fuzz/$target" "$corpus" "$root/tests/fuzz/corpus/$name" \
-    -max_total_time="$seconds" -timeout=1 -rss_limit_mb=2048 -print_final_stats=1 \
-    -artifact_prefix="$artifacts" >"$log" 2>&1; then
+    -max_total_time="$seconds" -timeout="${REFTRACK_FUZZ_TIMEOUT:-1}" -report_slow_units=1 \
+    -rss_limit_mb=2048 -print_final_stats=1 \
+    -artifact_prefix="$artifacts" ${REFTRACK_FUZZ_RUNS:+-runs="$REFTRACK_FUZZ_RUNS"} >"$log" 2>&1; then
     result="FAILED (see $log and $artifacts)"
     failed+=("$target")
   fi
+  slow=$(find "$artifacts" -name 'slow-unit-*' | wc -l)
+  [ "$slow" -eq 0 ] || result="$result ($slow slow unit(s) > 1 s in $artifacts: replay them)"
   runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
   rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log" | tail -1)
   printf '%-26s %12s %10s %s\n' "$target" "${runs:-?}" "${rate:-?}" "$result"

@@ -1,13 +1,12 @@
 #include "engine/config/ConfigFile.hpp"
 
-#include <algorithm>
 #include <cctype>
 #include <fstream>
 #include <iterator>
-#include <string_view>
 #include <utility>
 #include <vector>
 
+#include "engine/config/YamlSubsetValidator.hpp"
 #include "engine/core/Error.hpp"
 
 namespace reftrack {
@@ -87,60 +86,31 @@ void checkMatrices(const cv::FileNode& root, const std::string& what) {
 }  // namespace
 
 std::string withYamlDirective(const std::string& text) {
-  std::size_t start = 0;
-  if (text.rfind("\xEF\xBB\xBF", 0) == 0) start = 3;  // UTF-8 byte-order mark
-  if (text.compare(start, 5, "%YAML") == 0) return text;
-  if (start < text.size() && (text[start] == '<' || text[start] == '{')) return text;
+  const std::size_t start = text.rfind("\xEF\xBB\xBF", 0) == 0 ? 3 : 0;  // UTF-8 byte-order mark
+  if (text.compare(start, 1, "%") == 0) return text.substr(start);
   return "%YAML:1.0\n" + text.substr(start);
 }
 
 cv::FileStorage openConfigText(const std::string& text, const std::string& what,
                                const std::string& invalid) {
-  const std::string yaml = withYamlDirective(text);
-  // OpenCV 4.6's YAML parser never returns on some malformed texts (tests/fuzz): a second '%'
-  // directive line ("%YAML:1.0\n%YAlabels:\n   -\n      y: 8\n  0.\n   -\n") or a line that
-  // starts with '-' but is neither a sequence item, a negative number nor the document marker
-  // "---" ("%YAML:1.0\n---\n   a: 0\n--\n-# ", "%YAML:1.0\n -y\nl:\n  -y\n"). Such lines are
-  // refused first.
-  if (yaml.rfind("%YAML", 0) == 0) {
-    std::size_t lineStart = yaml.find('\n');
-    for (int line = 2; lineStart != std::string::npos; ++line) {
-      ++lineStart;
-      const std::size_t end = std::min(yaml.find('\n', lineStart), yaml.size());
-      const std::string_view row(yaml.data() + lineStart, end - lineStart);
-      const std::size_t first = row.find_first_not_of(' ');
-      const auto refuse = [&](const std::string& why) {
-        // The line in the user's file: without the directive we added, one less.
-        const int userLine = yaml.size() == text.size() ? line : line - 1;
-        throw Error(what + " " + invalid + ": line " + std::to_string(userLine) + ": " + why);
-      };
-      if (first != std::string_view::npos) {
-        const std::string_view rest = row.substr(first);
-        if (rest[0] == '%') refuse("a '%' directive is allowed only as the first line");
-        const bool numberOrItem = rest.size() == 1 || rest[1] == ' ' || rest[1] == '\r' ||
-                                  rest[1] == '.' ||
-                                  std::isdigit(static_cast<unsigned char>(rest[1]));
-        if (rest[0] == '-' && !numberOrItem && !(first == 0 && rest.substr(0, 3) == "---"))
-          refuse(
-              "a line starting with '-' must be a sequence item (\"- x\"), a negative number or "
-              "the document marker \"---\"");
-      }
-      lineStart = end < yaml.size() ? end : std::string::npos;
-    }
-  }
+  // OpenCV 4.6's YAML parser never returns on some malformed texts (found by tests/fuzz); the
+  // text must keep to the subset YamlSubsetValidator.hpp describes, which excludes them.
+  if (const auto violation = findYamlSubsetViolation(text))
+    throw Error(what + " " + invalid + ": line " + std::to_string(violation->line) + ": " +
+                violation->reason);
   cv::FileStorage fs;
   try {
-    if (!fs.open(yaml, cv::FileStorage::READ | cv::FileStorage::MEMORY))
+    if (!fs.open(withYamlDirective(text),
+                 cv::FileStorage::READ | cv::FileStorage::MEMORY | cv::FileStorage::FORMAT_YAML))
       throw Error(what + " " + invalid);
   } catch (const cv::Exception& e) {
     throw Error(what + " " + invalid + ": " + e.err);
   } catch (const std::exception& e) {
-    // OpenCV 4.6's YAML parser lets std::length_error out on a long malformed type tag
-    // ("!!opencv-ma\xcc\xcc...", found by tests/fuzz).
+    // OpenCV 4.6's YAML parser let std::length_error out on a long malformed type tag
+    // ("!!opencv-ma\xcc\xcc...", found by tests/fuzz; refused by the validator now).
     throw Error(what + " " + invalid + " (" + e.what() + ")");
   }
-  // Every reader looks keys up from the root, which OpenCV asserts is a map (a top-level list or
-  // single value let that cv::Exception escape the labels and motion readers; tests/fuzz).
+  // Every reader looks keys up from the root, which OpenCV asserts is a map.
   const cv::FileNode root = fs.root();
   if (!root.empty() && !root.isNone() && !root.isMap())
     throw Error(what + " must hold a map of key: value at the top level");

@@ -18,7 +18,7 @@ void readConfigValue(const cv::FileNode& section, const std::string& sectionName
 void readConfigValue(const cv::FileNode& section, const std::string& sectionName,
                      const std::string& key, std::string& value);
 
-// Opens an OpenCV YAML/XML parameter file (the `%YAML:1.0` line may be left out) and hands its
+// Opens a YAML parameter file (openConfigFile) (the `%YAML:1.0` line may be left out) and hands its
 // root to `read`; every failure (missing, unparsable, an unknown or bad entry) throws
 // reftrack::Error naming the file.
 void readParameterFile(const std::filesystem::path& file,

@@ -6,6 +6,7 @@
 #include <opencv2/core.hpp>
 #include <sstream>
 
+#include "engine/config/ConfigFile.hpp"
 #include "engine/core/DataLines.hpp"
 #include "engine/core/Error.hpp"
 
@@ -95,21 +96,13 @@ fs::path EurocCamera::findFolder(const fs::path& given) {
 
 void EurocCamera::readSensor(const fs::path& sensorYaml, EurocCamera& into) {
   const std::string where = "EuRoC sensor file '" + sensorYaml.string() + "'";
-  cv::FileStorage fs;
-  try {
-    // EuRoC's files carry no "%YAML:1.0" directive, which OpenCV's reader wants: add it.
-    std::ifstream in(sensorYaml);
-    if (!in) throw Error(where + " cannot be opened");
-    std::stringstream text;
-    text << in.rdbuf();
-    std::string content = text.str();
-    if (content.rfind("%YAML", 0) != 0) content = "%YAML:1.0\n---\n" + content;
-    fs.open(content,
-            cv::FileStorage::READ | cv::FileStorage::MEMORY | cv::FileStorage::FORMAT_YAML);
-  } catch (const cv::Exception& e) {
-    throw Error(where + " is not valid YAML: " + e.err);
-  }
-  if (!fs.isOpened()) throw Error(where + " is not valid YAML");
+  std::ifstream in(sensorYaml, std::ios::binary);
+  if (!in) throw Error(where + " cannot be opened");
+  std::stringstream text;
+  text << in.rdbuf();
+  // EuRoC's files carry no "%YAML:1.0" directive; openConfigText adds it and checks the text
+  // against the YAML subset OpenCV's parser is safe on.
+  const cv::FileStorage fs = openConfigText(text.str(), where, "is not valid YAML");
   const cv::FileNode root = fs.root();
   const std::string model = readString(root["camera_model"]);
   if (!model.empty() && model != "pinhole")
