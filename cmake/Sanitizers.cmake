@@ -34,13 +34,19 @@ if(REFTRACK_SANITIZE)
   message(STATUS "reftrack: sanitizers ${REFTRACK_SANITIZE}")
 endif()
 
-# The installed static libraries carry the instrumentation, so whatever links them (the install
-# test's consumer, a user's project) must link the sanitizer runtimes too.
-function(reftrack_export_sanitizer_link_options)
-  if(REFTRACK_SANITIZE)
-    foreach(target ${ARGN})
-      set_property(TARGET ${target} APPEND PROPERTY INTERFACE_LINK_OPTIONS
-                   $<INSTALL_INTERFACE:-fsanitize=${REFTRACK_SANITIZE}>)
-    endforeach()
+# After the targets exist (top-level CMakeLists.txt). The installed static libraries carry the
+# instrumentation, so whatever links them (the install test's consumer, a user's project) links
+# the sanitizer runtimes too. Under ThreadSanitizer, the app and its tests run OpenCV on one
+# thread (tests/sanitizers/OpenCvSingleThread.cpp says why).
+function(reftrack_finish_sanitizer_setup)
+  if(NOT REFTRACK_SANITIZE)
+    return()
+  endif()
+  foreach(target reftrack_engine reftrack_render)
+    set_property(TARGET ${target} APPEND PROPERTY INTERFACE_LINK_OPTIONS
+                 $<INSTALL_INTERFACE:-fsanitize=${REFTRACK_SANITIZE}>)
+  endforeach()
+  if(REFTRACK_SANITIZE MATCHES "thread")
+    target_sources(reftrack_app PRIVATE ${PROJECT_SOURCE_DIR}/tests/sanitizers/OpenCvSingleThread.cpp)
   endif()
 endfunction()

@@ -8,6 +8,8 @@
 # Every sanitizer report, from a test executable or from a `reftrack` process a test starts, is
 # written to <build>/sanitizer-logs/ and fails the run (a report in a child whose non-zero exit a
 # test expects would otherwise pass unseen); the reports are printed at the end.
+# REFTRACK_TEST_SELECTION=REGEX (test file names without _test.cpp) builds and runs only those
+# tests, e.g. REFTRACK_TEST_SELECTION='PoseTracker|Relocaliser' for a quick instrumented run.
 # Suppressions (third-party code only, each with its reason): tests/sanitizers/*.supp.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -32,18 +34,15 @@ export ASAN_OPTIONS="log_path=$logs/asan:detect_leaks=1:halt_on_error=1"
 export LSAN_OPTIONS="suppressions=$supp/lsan.supp:print_suppressions=0"
 export UBSAN_OPTIONS="log_path=$logs/ubsan:print_stacktrace=1:halt_on_error=1"
 export TSAN_OPTIONS="log_path=$logs/tsan:suppressions=$supp/tsan.supp:halt_on_error=1:second_deadlock_stack=1"
-# OpenCV's parallel_for_ runs on TBB, whose synchronisation ThreadSanitizer cannot see (libtbb is
-# not instrumented): every parallel loop would be reported as a race between TBB's workers and
-# the caller. One OpenCV thread runs those loops on the calling thread, so the threads left to
-# check are ours (and FFmpeg's and Mesa's, which synchronise through pthreads, which TSan sees).
-if [ "$sanitizers" = thread ]; then export OPENCV_FOR_THREADS_NUM=1; fi
+# Under ThreadSanitizer the app and its tests run OpenCV's loops on one thread (libtbb is not
+# instrumented): tests/sanitizers/OpenCvSingleThread.cpp.
 
 werror=OFF
 [ "${CI:-}" = "true" ] && werror=ON
 rm -rf "$logs"
 mkdir -p "$logs"  # before the build: test discovery runs the instrumented test executables
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DREFTRACK_SANITIZE="$sanitizers" \
-  -DREFTRACK_WERROR="$werror" >/dev/null
+  -DREFTRACK_WERROR="$werror" -DREFTRACK_TEST_SELECTION="${REFTRACK_TEST_SELECTION:-}" >/dev/null
 cmake --build "$build" -j "$(nproc)"
 
 start=$(date +%s)
