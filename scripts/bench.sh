@@ -23,3 +23,5 @@ done
   --no-baseline --out "$out/6dof-walkaround"
 "$build/app/reftrack" experiment-relocalisation --references 8 --cold-starts 200 --kidnaps 100 \
   --out-csv "$out/relocalisation.csv"
+# HD speed: homography and 6-DOF at 640x480, 1280x720 and 1920x1080 (thread CPU, baselines beside)
+bash "$root/scripts/bench-hd.sh" "$frames"

@@ -11,8 +11,7 @@
 namespace reftrack {
 
 int CornerParams::countFor(cv::Size imageSize) const {
-  const double s = resolutionScale(imageSize);
-  return std::max(4, static_cast<int>(std::lround(countAt320x240 * s * s)));
+  return std::max(4, static_cast<int>(std::lround(countAt320x240 * countScale(imageSize))));
 }
 
 double CornerParams::minDistanceFor(cv::Size imageSize) const {

@@ -19,7 +19,7 @@ struct CornerParams {
   int subPixelHalfWindow = 3;  // sub-pixel refinement half window (pixels)
   int contrastWindow = 15;     // RMS contrast window around each corner (paper Fig. 7: 15x15)
 
-  // Corner count for an image of this size (countAt320x240 scaled with the area).
+  // Corner count for an image of this size (countAt320x240 times countScale: ResolutionScale.hpp).
   int countFor(cv::Size imageSize) const;
   double minDistanceFor(cv::Size imageSize) const;
 

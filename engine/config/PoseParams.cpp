@@ -21,12 +21,14 @@ void PoseParams::check() const {
   requireIntInRange("pose.ar_order", arOrder, 1, 10);
   requireFiniteInRange("pose.translation_sigma", translationSigma, 1e-12, 1e6);
   requireFiniteInRange("pose.rotation_sigma", rotationSigma, 1e-12, 1e3);
+  requireFiniteInRange("pose.rolling_shutter_readout", rollingShutterReadout, 0.0, 1.0);
 }
 
 void PoseParams::write(cv::FileStorage& fs) const {
   fs << "estimator" << toString(estimator) << "alpha" << alpha << "ar_order" << arOrder
      << "translation_sigma" << translationSigma << "rotation_sigma" << rotationSigma
-     << "motion_model_file" << motionModelFile;
+     << "motion_model_file" << motionModelFile << "rolling_shutter_readout"
+     << rollingShutterReadout;
 }
 
 void PoseParams::read(const cv::FileNode& node) {
@@ -40,6 +42,7 @@ void PoseParams::read(const cv::FileNode& node) {
   readConfigValue(node, s, "translation_sigma", translationSigma);
   readConfigValue(node, s, "rotation_sigma", rotationSigma);
   readConfigValue(node, s, "motion_model_file", motionModelFile);
+  readConfigValue(node, s, "rolling_shutter_readout", rollingShutterReadout);
   check();
 }
 

@@ -19,6 +19,11 @@ struct PoseParams {
   double translationSigma = 0.001;  // process noise Q: metres per frame
   double rotationSigma = 0.001;     // process noise Q: radians per frame
   std::string motionModelFile;      // optional fitted model (overrides order and Q); "" = none
+  // Rolling shutter: the sensor's readout time (first row to last) as a fraction of the frame
+  // interval (a 20 ms readout at 30 fps: 0.6); 0 = global shutter. While tracking, each frame
+  // corner is moved back along its frame-to-frame motion to where it was when the middle row was
+  // exposed (the instant the pose stands for) before it enters the pose estimation.
+  double rollingShutterReadout = 0.0;
 
   void check() const;
   void write(cv::FileStorage& fs) const;

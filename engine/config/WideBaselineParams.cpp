@@ -5,6 +5,7 @@
 
 #include "engine/config/ConfigValue.hpp"
 #include "engine/config/KnownKeys.hpp"
+#include "engine/config/ResolutionScale.hpp"
 
 namespace reftrack {
 
@@ -23,8 +24,7 @@ void WideBaselineParams::check() const {
 
 namespace {
 int scaledCount(int countAt320x240, cv::Size imageSize) {
-  const double area = static_cast<double>(imageSize.area()) / (320.0 * 240.0);
-  return std::max(1, static_cast<int>(std::lround(countAt320x240 * area)));
+  return std::max(1, static_cast<int>(std::lround(countAt320x240 * countScale(imageSize))));
 }
 }  // namespace
 

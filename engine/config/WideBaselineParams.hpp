@@ -11,12 +11,12 @@ struct WideBaselineParams {
   int halfWindow = 5;        // n: the warped correlation compares (2n+1)^2 pixels
   double minScore = 0.7;     // keep the best candidate only above this warped NCC
   int affineNeighbours = 3;  // previous-frame matches defining the local affine map L
-  // At most this many reference corners (at 320x240, scaled with the image area) are tried per
-  // reference and frame, those with a 3D point first, spread over the image; 0 = all.
+  // At most this many reference corners (at 320x240, times countScale: ResolutionScale.hpp) are
+  // tried per reference and frame, those with a 3D point first, spread over the image; 0 = all.
   int referenceCornersAt320x240 = 50;
   int referenceCornersFor(cv::Size imageSize) const;  // 0 = all
   // Step 1, the frame-to-frame homography H, only predicts: it matches the strongest this many
-  // corners of each frame (at 320x240, scaled with the image area).
+  // corners of each frame (at 320x240, times countScale).
   int frameToFrameCornersAt320x240 = 40;
   int frameToFrameCornersFor(cv::Size imageSize) const;
   // The 6-DOF frames keep corners down to this fraction of the strongest Harris response when

@@ -11,6 +11,7 @@
 #include "engine/features/CornerDetector.hpp"
 #include "engine/homography/HomographyDlt.hpp"
 #include "engine/homography/RobustHomographyEstimator.hpp"
+#include "engine/homography/WindowAlignment.hpp"
 
 namespace reftrack {
 
@@ -32,6 +33,26 @@ constexpr double kCauchyScalePx = 1.0;
 constexpr double kConvergedPx = 0.01;
 constexpr int kMaxRounds = 4;
 constexpr int kReweightings = 4;  // Cauchy reweightings per round
+// Images larger than 640x480 are aligned on the coarsest pyramid level (cv::pyrDown) that still
+// holds half of its pixels: 1280x720 and 1920x1080 on their first level. Measured with
+// `reftrack bench-homography` (README, HD speed): at full resolution the refinement alone cost
+// more than the 3 ms a 1280x720 frame may take; on the level the error at the frame corners stays
+// a few hundredths of a pixel.
+constexpr double kLevelMinPixels = 640.0 * 480.0 / 2.0;
+
+int alignmentLevel(cv::Size size) {
+  int level = 0;
+  for (double area = static_cast<double>(size.width) * size.height; area / 4.0 >= kLevelMinPixels;
+       area /= 4.0)
+    ++level;
+  return level;
+}
+
+cv::Mat pyramidLevel(const cv::Mat& image, int level) {
+  cv::Mat out = image;
+  for (int l = 0; l < level; ++l) cv::pyrDown(out, out);
+  return out;
+}
 
 double cornerShift(const cv::Matx33d& a, const cv::Matx33d& b, cv::Size size) {
   double worst = 0;
@@ -53,7 +74,8 @@ bool finite(const cv::Matx33d& H) {
 HomographyRefiner::HomographyRefiner(const cv::Mat& referenceGray, int pointsAt320x240) {
   if (referenceGray.empty()) throw Error("homography refiner: the reference image is empty");
   if (pointsAt320x240 < 8) throw Error("homography refiner: at least 8 points are needed");
-  reference_ = toGray8(referenceGray);
+  level_ = alignmentLevel(referenceGray.size());
+  reference_ = pyramidLevel(toGray8(referenceGray), level_);
   CornerParams c;
   c.countAt320x240 = pointsAt320x240;
   c.quality = kPointQuality;
@@ -67,15 +89,30 @@ HomographyRefiner::HomographyRefiner(const cv::Mat& referenceGray, int pointsAt3
   for (const Corner& k : CornerDetector(c).detect(reference_)) {
     const cv::Point2f p = k.position;
     if (p.x >= margin && p.y >= margin && p.x < reference_.cols - 1 - margin &&
-        p.y < reference_.rows - 1 - margin)
-      points_.push_back(p);
+        p.y < reference_.rows - 1 - margin) {
+      levelPoints_.push_back(p);
+      // cv::pyrDown centres level pixel u on full-resolution pixel 2u.
+      points_.push_back(p * static_cast<float>(1 << level_));
+    }
   }
 }
 
 RefinedHomography HomographyRefiner::refine(const cv::Mat& frameGray, const cv::Matx33d& H,
-                                            int minInliers) const {
+                                            int minInliers, RefineStart start) const {
   if (frameGray.empty() || frameGray.type() != CV_8UC1)
     throw Error("homography refiner: the frame must be a non-empty 8-bit grey image");
+  if (level_ == 0) return refineOnLevel(frameGray, H, minInliers, start);
+  // On the pyramid level: H_level = S^-1 H S with S = diag(2^level, 2^level, 1).
+  const double f = static_cast<double>(1 << level_);
+  const cv::Matx33d S(f, 0, 0, 0, f, 0, 0, 0, 1), Sinv(1 / f, 0, 0, 0, 1 / f, 0, 0, 0, 1);
+  RefinedHomography r =
+      refineOnLevel(pyramidLevel(frameGray, level_), Sinv * H * S, minInliers, start);
+  r.H = r.success ? S * r.H * Sinv : H;
+  return r;
+}
+
+RefinedHomography HomographyRefiner::refineOnLevel(const cv::Mat& frameGray, const cv::Matx33d& H,
+                                                   int minInliers, RefineStart start) const {
   RefinedHomography out;
   out.H = H;
   const double s = resolutionScale(frameGray.size());
@@ -84,12 +121,12 @@ RefinedHomography HomographyRefiner::refine(const cv::Mat& frameGray, const cv::
   const cv::Rect frameRect(0, 0, frameGray.cols, frameGray.rows);
   cv::Matx33d current = H;
   for (int round = 0; round < kMaxRounds; ++round) {
-    const int levels = round == 0 ? kFirstRoundLevels : 0;
+    const int levels = round == 0 && start == RefineStart::Coarse ? kFirstRoundLevels : 0;
     const int margin = (half + 2) << levels;
     // The reference points H puts inside the frame (with the LK window), and the frame region
     // they span: only that region of the reference is warped.
     std::vector<cv::Point2f> src, predicted;
-    for (const cv::Point2f& p : points_) {
+    for (const cv::Point2f& p : levelPoints_) {
       const cv::Point2d q = transferPoint(current, cv::Point2d(p.x, p.y));
       if (q.x >= half && q.y >= half && q.x < frameGray.cols - 1 - half &&
           q.y < frameGray.rows - 1 - half) {
@@ -98,29 +135,40 @@ RefinedHomography HomographyRefiner::refine(const cv::Mat& frameGray, const cv::
       }
     }
     if (static_cast<int>(src.size()) < std::max(minInliers, 8)) return out;
-    const cv::Rect roi = (cv::boundingRect(predicted) + cv::Size(1, 1) - cv::Point(margin, margin) +
-                          cv::Size(2 * margin, 2 * margin)) &
-                         frameRect;
-    const cv::Matx33d shift(1, 0, -roi.x, 0, 1, -roi.y, 0, 0, 1);
-    cv::Mat warped;
-    cv::warpPerspective(reference_, warped, shift * current, roi.size(), cv::INTER_LINEAR,
-                        cv::BORDER_CONSTANT, cv::Scalar(0));
-    std::vector<cv::Point2f> from(predicted.size()), found;
-    for (size_t i = 0; i < predicted.size(); ++i)
-      from[i] = predicted[i] - cv::Point2f(static_cast<float>(roi.x), static_cast<float>(roi.y));
-    found = from;
-    std::vector<uchar> status;
-    std::vector<float> error;
-    cv::calcOpticalFlowPyrLK(
-        warped, frameGray(roi), from, found, status, error, cv::Size(2 * half + 1, 2 * half + 1),
-        levels, cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 20, 0.01),
-        cv::OPTFLOW_USE_INITIAL_FLOW);
     std::vector<cv::Point2f> a, b;
-    for (size_t i = 0; i < status.size(); ++i)
-      if (status[i]) {
-        a.push_back(src[i]);
-        b.push_back(found[i] + cv::Point2f(static_cast<float>(roi.x), static_cast<float>(roi.y)));
-      }
+    if (levels == 0) {
+      // Within about a pixel: the windows alone (measured 640x480, bench-homography: the whole
+      // warp and the LK pyramid were ~80% of a tracked frame's time).
+      const WindowAlignmentResult w = alignWindows(reference_, frameGray, current, predicted, half);
+      for (size_t i = 0; i < w.status.size(); ++i)
+        if (w.status[i]) {
+          a.push_back(src[i]);
+          b.push_back(w.found[i]);
+        }
+    } else {
+      const cv::Rect roi = (cv::boundingRect(predicted) + cv::Size(1, 1) -
+                            cv::Point(margin, margin) + cv::Size(2 * margin, 2 * margin)) &
+                           frameRect;
+      const cv::Matx33d shift(1, 0, -roi.x, 0, 1, -roi.y, 0, 0, 1);
+      cv::Mat warped;
+      cv::warpPerspective(reference_, warped, shift * current, roi.size(), cv::INTER_LINEAR,
+                          cv::BORDER_CONSTANT, cv::Scalar(0));
+      std::vector<cv::Point2f> from(predicted.size()), found;
+      for (size_t i = 0; i < predicted.size(); ++i)
+        from[i] = predicted[i] - cv::Point2f(static_cast<float>(roi.x), static_cast<float>(roi.y));
+      found = from;
+      std::vector<uchar> status;
+      std::vector<float> error;
+      cv::calcOpticalFlowPyrLK(
+          warped, frameGray(roi), from, found, status, error, cv::Size(2 * half + 1, 2 * half + 1),
+          levels, cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 20, 0.01),
+          cv::OPTFLOW_USE_INITIAL_FLOW);
+      for (size_t i = 0; i < status.size(); ++i)
+        if (status[i]) {
+          a.push_back(src[i]);
+          b.push_back(found[i] + cv::Point2f(static_cast<float>(roi.x), static_cast<float>(roi.y)));
+        }
+    }
     if (static_cast<int>(a.size()) < std::max(minInliers, 8)) return out;
     // Cauchy-weighted least squares of the transfer error, started from the current H.
     std::vector<int> all(a.size());

@@ -7,11 +7,20 @@
 // steps repeat until H moves less than a hundredth of a pixel at the frame corners. Two
 // registrations of one frame that start a few pixels apart (tracked in order, or cold through
 // the keypoint layer) end at the same H: measured on the shared planar clips, up to 16 px apart
-// at the frame corners before, at most 0.6 px after.
+// at the frame corners before, at most 0.6 px after. A start within about a pixel (a tracked
+// frame) skips the image pyramid and the whole-image warp: each round samples only the points'
+// windows of the warped reference (WindowAlignment), which costs a fraction of warping the image.
+// Images larger than 640x480 are aligned on a pyramid level that holds at least half its pixels
+// (1280x720 and 1920x1080: the first), H carried there and back exactly.
 #include <opencv2/core.hpp>
 #include <vector>
 
 namespace reftrack {
+
+// How far the start may be from the truth: Coarse (a few pixels: a keypoint homography) runs the
+// first round on a 3-level pyramid of the whole warped reference; Close (within about a pixel: a
+// tracked frame's correlation fit) aligns the points' windows directly from the first round.
+enum class RefineStart { Coarse, Close };
 
 struct RefinedHomography {
   bool success = false;
@@ -31,13 +40,20 @@ class HomographyRefiner {
   // frameGray: 8-bit grey; H: reference -> frame, within a few pixels of the truth where the
   // reference points land. Fails (success = false, H unchanged) when fewer than minInliers points
   // support the fit or the fit diverges.
-  RefinedHomography refine(const cv::Mat& frameGray, const cv::Matx33d& H, int minInliers) const;
+  RefinedHomography refine(const cv::Mat& frameGray, const cv::Matx33d& H, int minInliers,
+                           RefineStart start = RefineStart::Coarse) const;
 
-  const std::vector<cv::Point2f>& points() const { return points_; }
+  const std::vector<cv::Point2f>& points() const { return points_; }  // full-resolution pixels
+  int level() const { return level_; }  // the pyramid level aligned on (0: full resolution)
 
  private:
-  cv::Mat reference_;
-  std::vector<cv::Point2f> points_;
+  RefinedHomography refineOnLevel(const cv::Mat& frameLevel, const cv::Matx33d& H, int minInliers,
+                                  RefineStart start) const;
+
+  int level_ = 0;
+  cv::Mat reference_;                     // on the level
+  std::vector<cv::Point2f> points_;       // full-resolution pixels
+  std::vector<cv::Point2f> levelPoints_;  // the same on the level
 };
 
 }  // namespace reftrack

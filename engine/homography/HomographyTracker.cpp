@@ -102,7 +102,7 @@ CornerParams scaledCount(const CornerParams& corners, double factor) {
 // every pair, so its cost grows with the square of the count (measured cold registration at
 // 640x480 with the area-scaled 1760 corners: 37-46 ms per frame).
 CornerParams reacquisitionCorners(const TrackerParams& p, cv::Size imageSize) {
-  const double area = resolutionScale(imageSize) * resolutionScale(imageSize);
+  const double area = countScale(imageSize);  // what CornerParams::countFor multiplies by
   CornerParams c = scaledCount(p.corners, p.homography.reacquireCornerFactor / std::max(1.0, area));
   c.countAt320x240 = std::max(c.countAt320x240, p.corners.countAt320x240);
   c.quality = std::min(c.quality, p.homography.reacquireCornerQuality);
@@ -361,7 +361,8 @@ void HomographyTracker::matchAndFit(Attempt& a, const cv::Mat& gray, const Refer
 
 void HomographyTracker::refine(Attempt& a, const cv::Mat& gray, double stageMs[kStages]) const {
   auto clock = std::chrono::steady_clock::now();
-  const RefinedHomography r = refiner_->refine(gray, a.est.H, params_.ransac.minInliers);
+  const RefinedHomography r =
+      refiner_->refine(gray, a.est.H, params_.ransac.minInliers, RefineStart::Close);
   // Kept only where it agrees with the fit it started from: its transfer error on that fit's
   // inliers within the inlier threshold (RMS), so a refinement that slid off cannot replace it.
   if (r.success) {

@@ -265,7 +265,9 @@ PoseTrackingResult PoseTracker::Impl::process(const cv::Mat& frame) {
     return finish(r);
   }
   std::vector<Eigen::Vector2d> undist;
-  for (const cv::Point2f& p : map.camera.undistortPixels(pixels)) undist.push_back(toEigen(p));
+  // The frame-to-frame homography V_k -> V_{k-1} of a tracked frame (identity otherwise).
+  cv::Matx33d H = cv::Matx33d::eye();
+  bool haveFrameToFrame = false;
 
   // ---- Matches to V_A and V_B (frame corner index -> reference corner index).
   std::vector<WideBaselineMatch> mA, mB;
@@ -275,7 +277,6 @@ PoseTrackingResult PoseTracker::Impl::process(const cv::Mat& frame) {
     // Frame-to-frame homography V_k -> V_{k-1}: only a prediction for W = L H (Eq. 18), so
     // OpenCV's RANSAC homography suffices here; a failure falls back to the identity. A seeded
     // frame's "previous frame" is the seed's projection of the map: H is the identity.
-    cv::Matx33d H = cv::Matx33d::eye();
     WideBaselineParams wideParams = params.wideBaseline;
     if (seeded) {
       seedsFromPose(*seeded, gray.size());
@@ -293,7 +294,10 @@ PoseTrackingResult PoseTracker::Impl::process(const cv::Mat& frame) {
         b.push_back(prevF2F[static_cast<std::size_t>(m.second)]);
       }
       const cv::Mat Hm = cv::findHomography(a, b, cv::RANSAC, 3.0 * scale);
-      if (!Hm.empty()) H = cv::Matx33d(Hm);
+      if (!Hm.empty()) {
+        H = cv::Matx33d(Hm);
+        haveFrameToFrame = true;
+      }
     }
     r.timings.push_back({seeded ? "seed" : "frame-to-frame", msSince(t)});
     t = Clock::now();
@@ -363,6 +367,24 @@ PoseTrackingResult PoseTracker::Impl::process(const cv::Mat& frame) {
   }
   r.matchesA = static_cast<int>(mA.size());
   r.matchesB = static_cast<int>(mB.size());
+  {
+    // Rolling shutter (pose.rolling_shutter_readout): row y was exposed (y - c) / (rows - 1)
+    // readouts after the middle row c; the corner moves back along its frame-to-frame motion
+    // p - H p (one frame interval) by that fraction of it. Matching keeps the observed pixels.
+    std::vector<cv::Point2f> measured = pixels;
+    const double readout = params.pose.rollingShutterReadout;
+    if (readout > 0 && haveFrameToFrame) {
+      const double middle = 0.5 * (gray.rows - 1);
+      for (cv::Point2f& p : measured) {
+        const cv::Vec3d q = H * cv::Vec3d(p.x, p.y, 1.0);
+        if (!(std::abs(q[2]) > 1e-12)) continue;
+        const double f = readout * (p.y - middle) / (gray.rows - 1);
+        p.x -= static_cast<float>(f * (p.x - q[0] / q[2]));
+        p.y -= static_cast<float>(f * (p.y - q[1] / q[2]));
+      }
+    }
+    for (const cv::Point2f& p : map.camera.undistortPixels(measured)) undist.push_back(toEigen(p));
+  }
 
   // ---- 3D-2D pairs (map points seen through A or B), PnP-RANSAC, gate.
   t = Clock::now();

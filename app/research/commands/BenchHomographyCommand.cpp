@@ -65,7 +65,7 @@ CommandRegistration registerBenchHomographyCommand(CLI::App& parent) {
       "Frames: the simulator's 'rotate' preset (60 degree field of view, pan +-40 degrees about\n"
       "reference view A's optical centre), so each frame's true homography K R K^-1 is exact.\n"
       "Error: mean over the frame's 4 corners of |H_est H_true^-1 c - c| (px). Times cover the\n"
-      "registration call on a grey frame, one thread (cv::setNumThreads(1)).");
+      "registration call on a grey frame as thread CPU time, one thread (cv::setNumThreads(1)).");
   return {
       sub, [args] {
         cv::setNumThreads(1);
@@ -82,7 +82,7 @@ CommandRegistration registerBenchHomographyCommand(CLI::App& parent) {
           o.params = params;
           results.push_back(runHomographyBenchmark(o));
         }
-        std::printf("%-26s %11s %9s %12s %12s\n", "  method", "registered", "ms_median",
+        std::printf("%-26s %11s %9s %12s %12s\n", "  method", "registered", "cpu_ms_med",
                     "err_median", "err_mean");
         for (const BenchmarkResult& r : results) {
           std::printf("%dx%d, %d frames\n", r.size.width, r.size.height, r.frames);

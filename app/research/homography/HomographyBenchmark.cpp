@@ -1,7 +1,6 @@
 #include "app/research/homography/HomographyBenchmark.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 
@@ -10,6 +9,7 @@
 #include "app/research/homography/HomographyGroundTruth.hpp"
 #include "app/simulator/SceneSimulator.hpp"
 #include "engine/core/Error.hpp"
+#include "engine/core/ThreadCpuClock.hpp"
 #include "engine/features/CornerDetector.hpp"
 #include "engine/homography/HomographyTracker.hpp"
 
@@ -17,9 +17,8 @@ namespace reftrack::app {
 
 namespace {
 
-double millisecondsSince(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
+// Thread CPU time, not wall time: on a shared machine the wall clock counts other processes too.
+double millisecondsSince(double cpuStartMs) { return threadCpuMs() - cpuStartMs; }
 
 }  // namespace
 
@@ -78,7 +77,7 @@ BenchmarkResult runHomographyBenchmark(const BenchmarkOptions& options) {
     const cv::Matx33d trueH = rotationHomography(K, aToK.rotation());
 
     const auto runTracker = [&](HomographyTracker& t, BenchmarkSide& side) {
-      const auto t0 = std::chrono::steady_clock::now();
+      const double t0 = threadCpuMs();
       const HomographyTrackResult r = t.track(frame);
       side.milliseconds.push_back(millisecondsSince(t0));
       side.cornerErrorPx.push_back(r.tracked ? frameCornerError(r.H, trueH, options.size) : nan);
@@ -98,7 +97,7 @@ BenchmarkResult runHomographyBenchmark(const BenchmarkOptions& options) {
       runTracker(tracker, out.tracker);
     }
 
-    const auto t0 = std::chrono::steady_clock::now();
+    const double t0 = threadCpuMs();
     const OrbHomographyResult b = baseline.track(frame);
     out.baseline.milliseconds.push_back(millisecondsSince(t0));
     out.baseline.cornerErrorPx.push_back(b.tracked ? frameCornerError(b.H, trueH, options.size)

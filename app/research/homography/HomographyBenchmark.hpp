@@ -3,7 +3,7 @@
 // on the very same frames: a simulated pure-rotation sequence (preset "rotate": the camera pans
 // +-40 degrees about reference view A's optical centre), so each frame's true homography
 // K R K^-1 is exact. Both register every frame to reference A; per frame the time of the call
-// and the registration error at the frame's corners are recorded. Single thread: call
+// (thread CPU) and the registration error at the frame's corners are recorded. Single thread: call
 // cv::setNumThreads(1) first for the paper's one-core figures. Needs a current GL context.
 #include <cstdint>
 #include <opencv2/core.hpp>
@@ -28,7 +28,7 @@ struct BenchmarkOptions {
 
 struct BenchmarkSide {
   std::string name;
-  std::vector<double> milliseconds;   // per frame
+  std::vector<double> milliseconds;   // per frame, thread CPU time of the call
   std::vector<double> cornerErrorPx;  // per frame; NaN when the frame was not registered
   int registered = 0;
   std::vector<std::string> failures;  // "frame k: reason" of unregistered frames

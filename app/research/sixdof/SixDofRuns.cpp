@@ -7,6 +7,7 @@
 #include "app/cli/ProgressBar.hpp"
 #include "app/research/baselines/OrbPnpKalmanTracker.hpp"
 #include "engine/core/Error.hpp"
+#include "engine/core/ThreadCpuClock.hpp"
 #include "engine/tracking/MultiReferenceTracker.hpp"
 #include "engine/tracking/PoseTracker.hpp"
 
@@ -75,8 +76,10 @@ TrackerRun runPoseTracker(const SimulatedSequence& s, const TrackerParams& param
   ProgressBar progress("track " + name, s.frames.size());
   for (std::size_t k = 0; k < s.frames.size(); ++k) {
     const Clock::time_point t0 = Clock::now();
+    const double cpu0 = threadCpuMs();
     const PoseTrackingResult r = tracker.process(s.frames[k]);
     run.frameMs.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+    run.frameCpuMs.push_back(threadCpuMs() - cpu0);
     for (const StageTiming& st : r.timings) run.stageMs[st.stage].push_back(st.ms);
     if (r.worldToCamera) {
       run.estimate.poses.push_back({s.groundTruth.poses[k].timestamp, *r.worldToCamera});
@@ -104,8 +107,10 @@ TrackerRun runMultiReferenceTracker(const SimulatedSequence& s, const TrackerPar
   ProgressBar progress("track " + name, s.frames.size());
   for (std::size_t k = 0; k < s.frames.size(); ++k) {
     const Clock::time_point t0 = Clock::now();
+    const double cpu0 = threadCpuMs();
     const MultiReferenceResult m = tracker.process(s.frames[k]);
     run.frameMs.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+    run.frameCpuMs.push_back(threadCpuMs() - cpu0);
     const PoseTrackingResult& r = m.tracking;
     for (const StageTiming& st : r.timings) run.stageMs[st.stage].push_back(st.ms);
     run.motion.push_back(std::nullopt);  // x_Ak is relative to whichever pair is in use
@@ -132,8 +137,10 @@ TrackerRun runOrbBaseline(const SimulatedSequence& s, double cubeSide) {
   ProgressBar progress("track baseline", s.frames.size());
   for (std::size_t k = 0; k < s.frames.size(); ++k) {
     const Clock::time_point t0 = Clock::now();
+    const double cpu0 = threadCpuMs();
     const std::optional<RigidPose> pose = baseline.process(s.frames[k]);
     run.frameMs.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+    run.frameCpuMs.push_back(threadCpuMs() - cpu0);
     if (pose)
       run.estimate.poses.push_back({s.groundTruth.poses[k].timestamp, *pose});
     else

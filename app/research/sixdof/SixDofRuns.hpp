@@ -15,8 +15,9 @@ namespace reftrack::app {
 
 struct TrackerRun {
   std::string name;
-  TumTrajectory estimate;                              // frames with a pose only
-  std::vector<double> frameMs;                         // every frame
+  TumTrajectory estimate;          // frames with a pose only
+  std::vector<double> frameMs;     // every frame (wall clock)
+  std::vector<double> frameCpuMs;  // every frame, thread CPU time (ThreadCpuClock.hpp)
   std::map<std::string, std::vector<double>> stageMs;  // PoseTracker stages
   std::vector<std::optional<Vector6d>> motion;         // x_Ak per frame (PoseTracker runs)
   int lostFrames = 0;

@@ -20,6 +20,8 @@ TEST(PoseParams, DefaultsAndRoundTrip) {
   in.translationSigma = 0.004;
   in.rotationSigma = 0.003;
   in.motionModelFile = "model.yml";
+  EXPECT_DOUBLE_EQ(in.rollingShutterReadout, 0.0);  // global shutter unless told
+  in.rollingShutterReadout = 0.6;
   PoseParams out;
   roundTrip(in, out);
   EXPECT_EQ(out.estimator, PoseEstimatorKind::Standard);
@@ -28,6 +30,7 @@ TEST(PoseParams, DefaultsAndRoundTrip) {
   EXPECT_DOUBLE_EQ(out.translationSigma, 0.004);
   EXPECT_DOUBLE_EQ(out.rotationSigma, 0.003);
   EXPECT_EQ(out.motionModelFile, "model.yml");
+  EXPECT_DOUBLE_EQ(out.rollingShutterReadout, 0.6);
 }
 
 TEST(PoseParams, EveryBadFieldIsNamed) {
@@ -39,6 +42,8 @@ TEST(PoseParams, EveryBadFieldIsNamed) {
       {"pose.translation_sigma", [&](PoseParams& p) { p.translationSigma = nan; }},
       {"pose.alpha", [](PoseParams& p) { p.alpha = std::numeric_limits<double>::infinity(); }},
       {"pose.rotation_sigma", [&](PoseParams& p) { p.rotationSigma = nan; }},
+      {"pose.rolling_shutter_readout", [](PoseParams& p) { p.rollingShutterReadout = -0.1; }},
+      {"pose.rolling_shutter_readout", [](PoseParams& p) { p.rollingShutterReadout = 1.5; }},
   };
   for (const auto& [field, mutate] : cases) {
     PoseParams p;
