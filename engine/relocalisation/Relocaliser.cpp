@@ -318,13 +318,26 @@ RelocalisationAttempt Relocaliser::Impl::locate(const cv::Mat& frame) const {
   // fallback costs only on such frames, an attempt's median stays that of matching two).
   const std::vector<int> retrieved = retrieve(keypoints, descriptors);
   RelocalisationAttempt first = locateWith(frame, keypoints, descriptors, retrieved);
-  if (first.candidate || retrieved.size() == references.size()) return first;
+  if (first.candidate) return first;
   std::vector<int> all(references.size());
   std::iota(all.begin(), all.end(), 0);
-  RelocalisationAttempt second = locateWith(frame, keypoints, descriptors, all);
-  if (!second.candidate)
-    second.message = first.message + "; with all references: " + second.message;
-  return second;
+  if (retrieved.size() != references.size()) {
+    RelocalisationAttempt second = locateWith(frame, keypoints, descriptors, all);
+    if (second.candidate) return second;
+    first.message += "; with all references: " + second.message;
+  }
+  // A far view sees the references' finest keypoints below its own finest ORB scale: the frame
+  // is detected again with finer (upsampled) pyramid levels and matched to every reference.
+  // Only frames that gave no pose pay for it; the acceptance is the same.
+  if (params.keypoints != "orb" || params.frameFinerLevels == 0) return first;
+  std::vector<cv::KeyPoint> fine;
+  cv::Mat fineDescriptors;
+  features.detectAndDescribe(frame,
+                             params.featuresPerFrameFor(size) * (4 + params.frameFinerLevels) / 4,
+                             fine, fineDescriptors, params.frameFinerLevels);
+  RelocalisationAttempt finer = locateWith(frame, fine, fineDescriptors, all);
+  finer.message = first.message + "; with finer frame levels: " + finer.message;
+  return finer;
 }
 
 RelocalisationAttempt Relocaliser::Impl::locateWith(const cv::Mat& frame,
