@@ -30,6 +30,8 @@ void RelocalisationParams::check() const {
                 "'");
   requireIntInRange("relocalisation.features_per_frame", featuresPerFrame, 50, 100000);
   requireIntInRange("relocalisation.features_per_reference", featuresPerReference, 50, 100000);
+  requireIntInRange("relocalisation.reference_finer_levels", referenceFinerLevels, 0, 8);
+  requireIntInRange("relocalisation.frame_finer_levels", frameFinerLevels, 0, 8);
   requireFiniteInRange("relocalisation.ratio", ratio, 0.1, 1.0);
   requireIntInRange("relocalisation.references_to_match", referencesToMatch, 1, 10000);
   requireIntInRange("relocalisation.ransac_iterations", ransacIterations, 1, 1000000);
@@ -47,6 +49,7 @@ void RelocalisationParams::check() const {
 void RelocalisationParams::write(cv::FileStorage& fs) const {
   fs << "enabled" << (enabled ? "true" : "false") << "keypoints" << keypoints
      << "features_per_frame" << featuresPerFrame << "features_per_reference" << featuresPerReference
+     << "reference_finer_levels" << referenceFinerLevels << "frame_finer_levels" << frameFinerLevels
      << "ratio" << ratio << "references_to_match" << referencesToMatch << "ransac_iterations"
      << ransacIterations << "reprojection_px" << reprojectionPx << "min_inliers" << minInliers
      << "min_inlier_ratio" << minInlierRatio << "attempt_every_frames" << attemptEveryFrames
@@ -62,6 +65,8 @@ void RelocalisationParams::read(const cv::FileNode& node) {
   readConfigValue(node, s, "keypoints", keypoints);
   readConfigValue(node, s, "features_per_frame", featuresPerFrame);
   readConfigValue(node, s, "features_per_reference", featuresPerReference);
+  readConfigValue(node, s, "reference_finer_levels", referenceFinerLevels);
+  readConfigValue(node, s, "frame_finer_levels", frameFinerLevels);
   readConfigValue(node, s, "ratio", ratio);
   readConfigValue(node, s, "references_to_match", referencesToMatch);
   readConfigValue(node, s, "ransac_iterations", ransacIterations);

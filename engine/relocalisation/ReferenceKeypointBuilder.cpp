@@ -82,17 +82,15 @@ void buildReferenceKeypoints(MultiReferenceMap& map, const RelocalisationParams&
       throw Error("buildReferenceKeypoints: reference '" + v.name + "' is not " +
                   std::to_string(size.width) + "x" + std::to_string(size.height));
   const KeypointFeatures features(params.keypoints);
-  // The ORB pyramid of a reference gets kFinerLevels levels above the image (upsampled 1.2x
-  // each): a view at half the reference's distance sees finer keypoints than the reference's
-  // finest. ORB shares the keypoints out 1.2x more per finer level, so the cap grows by 7/4 to
-  // keep about as many at the image's own levels. Measured on the first 93 of the 200 views of
-  // experiment-relocalisation (8 references, seed 1): all three views at 0.5-0.6x that the plain
-  // pyramid (2000 keypoints) left without a pose relocalised, 88/93 vs 86/93, none wrong; two
-  // more coarser levels (4500 keypoints) changed nothing.
-  constexpr int kFinerLevels = 3;
+  // The ORB pyramid of a reference gets params.referenceFinerLevels levels above the image
+  // (upsampled 1.2x each): a view at half the reference's distance sees finer keypoints than the
+  // reference's finest. ORB shares the keypoints out 1.2x more per finer level, so the cap grows
+  // by a quarter per finer level (7/4 for 3: about as many keypoints stay at the image's own
+  // levels; the exact geometric share would be 1.95, more descriptors to match per attempt).
+  // Two more coarser levels (4500 keypoints) changed nothing on the same views.
   const bool orb = params.keypoints == "orb";
-  const int count =
-      orb ? params.featuresPerReferenceFor(size) * 7 / 4 : params.featuresPerReferenceFor(size);
+  const int finerLevels = orb ? params.referenceFinerLevels : 0;
+  const int count = params.featuresPerReferenceFor(size) * (4 + finerLevels) / 4;
   const double tolerance = params.triangulationPx * resolutionScale(size);
   const std::size_t n = map.views.size();
 
@@ -105,7 +103,7 @@ void buildReferenceKeypoints(MultiReferenceMap& map, const RelocalisationParams&
     ReferenceKeypoints& layer = map.views[v].keypoints;
     layer = ReferenceKeypoints{};
     features.detectAndDescribe(map.views[v].image, count, layer.keypoints, layer.descriptors,
-                               orb ? kFinerLevels : 0);
+                               finerLevels);
     const Eigen::Vector3d none =
         Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
     layer.points.assign(layer.keypoints.size(), none);
@@ -117,7 +115,7 @@ void buildReferenceKeypoints(MultiReferenceMap& map, const RelocalisationParams&
     }
     // The finest keypoints of the image itself set the unit tolerance (the upsampled levels'
     // are no better located than those).
-    if (orb) smallest *= std::pow(1.2f, static_cast<float>(kFinerLevels));
+    smallest *= std::pow(1.2f, static_cast<float>(finerLevels));
     ideal[v] = map.camera.undistortPixels(px);
     for (const cv::KeyPoint& k : layer.keypoints)
       tol[v].push_back(tolerance * std::clamp(static_cast<double>(k.size / smallest), 1.0, 4.0));

@@ -15,6 +15,8 @@ TEST(RelocalisationParams, RoundTrip) {
   in.keypoints = "sift";
   in.featuresPerFrame = 700;
   in.featuresPerReference = 1500;
+  in.referenceFinerLevels = 5;
+  in.frameFinerLevels = 2;
   in.ratio = 0.7;
   in.referencesToMatch = 5;
   in.ransacIterations = 150;
@@ -33,6 +35,8 @@ TEST(RelocalisationParams, RoundTrip) {
   EXPECT_EQ(out.keypoints, "sift");
   EXPECT_EQ(out.featuresPerFrame, 700);
   EXPECT_EQ(out.featuresPerReference, 1500);
+  EXPECT_EQ(out.referenceFinerLevels, 5);
+  EXPECT_EQ(out.frameFinerLevels, 2);
   EXPECT_DOUBLE_EQ(out.ratio, 0.7);
   EXPECT_EQ(out.referencesToMatch, 5);
   EXPECT_EQ(out.ransacIterations, 150);
@@ -71,6 +75,9 @@ TEST(RelocalisationParams, EveryBadFieldIsNamed) {
       {"relocalisation.keypoints", [](P& p) { p.keypoints = "surf"; }},
       {"relocalisation.features_per_frame", [](P& p) { p.featuresPerFrame = 0; }},
       {"relocalisation.features_per_reference", [](P& p) { p.featuresPerReference = -5; }},
+      {"relocalisation.reference_finer_levels", [](P& p) { p.referenceFinerLevels = -1; }},
+      {"relocalisation.reference_finer_levels", [](P& p) { p.referenceFinerLevels = 9; }},
+      {"relocalisation.frame_finer_levels", [](P& p) { p.frameFinerLevels = -2; }},
       {"relocalisation.ratio", [&](P& p) { p.ratio = nan; }},
       {"relocalisation.ratio", [](P& p) { p.ratio = 1.5; }},
       {"relocalisation.references_to_match", [](P& p) { p.referencesToMatch = 0; }},

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <ctime>
 #include <opencv2/imgproc.hpp>
+#include <random>
 
 #include "engine/core/Error.hpp"
 #include "engine/relocalisation/RelocalisationTestScene.hpp"
@@ -130,6 +131,54 @@ TEST_F(RelocaliserOnCornerWorld, AcceptsGreyAndBgrAndRefusesOtherSizes) {
   cv::Mat wide;
   grey.convertTo(wide, CV_16U);
   EXPECT_THROW(relocaliser.locate(wide), Error);
+}
+
+// Far views (2.6-3.2x the references' distance, 25-40 degrees off a reference's direction): the
+// scene is small in the frame, and the references' finest keypoints lie below the frame's finest
+// ORB scale. The second detection with upsampled frame levels must relocalise more of them than
+// the plain pyramid alone, and never wrongly.
+TEST_F(RelocaliserOnCornerWorld, FarViewsRelocaliseWithFinerFrameLevels) {
+  const std::vector<RigidPose> refs =
+      CornerWorld::referencePoses(kViews, test::kReferenceDistanceM);
+  std::vector<RigidPose> views;
+  std::mt19937 rng(31);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  while (views.size() < 12) {
+    const Eigen::Vector3d back =
+        (refs[views.size() % refs.size()].cameraCentre() - CornerWorld::centre()).normalized();
+    const Eigen::Vector3d axis =
+        Eigen::AngleAxisd(2.0 * M_PI * uniform(rng), back) * back.unitOrthogonal();
+    const Eigen::Vector3d dir =
+        Eigen::AngleAxisd((25.0 + 15.0 * uniform(rng)) * M_PI / 180.0, axis) * back;
+    if (dir.minCoeff() < 0.2) continue;  // a face seen edge-on
+    const double d = test::kReferenceDistanceM * (2.6 + 0.6 * uniform(rng));
+    views.push_back(CornerWorld::lookAt(CornerWorld::centre() + d * dir, CornerWorld::centre(),
+                                        360.0 * uniform(rng) - 180.0));
+  }
+  int found[2] = {0, 0}, wrong = 0;
+  for (int finer : {0, 1}) {
+    RelocalisationParams params;
+    params.frameFinerLevels = finer ? 3 : 0;
+    const Relocaliser relocaliser(*map_, params);
+    for (std::size_t i = 0; i < views.size(); ++i) {
+      const RelocalisationAttempt a =
+          relocaliser.locate(world_->render(views[i], 5000 + static_cast<int>(i)));
+      if (!a.candidate) continue;
+      ++found[finer];
+      const RigidPose& T = a.candidate->worldToCamera;
+      // Wrong: as in RandomViewsRelocaliseAccuratelyAndNeverWrongly.
+      if (1000.0 * (T.cameraCentre() - views[i].cameraCentre()).norm() >
+              50.0 * distance(views[i]) ||
+          RigidPose::rotationDistance(T, views[i]) * 180.0 / M_PI > 2.0) {
+        ++wrong;
+        ADD_FAILURE() << "far view " << i << ": wrong pose (" << a.message << ")";
+      }
+    }
+  }
+  std::printf("far views relocalised: %d/%zu plain pyramid, %d/%zu with finer frame levels\n",
+              found[0], views.size(), found[1], views.size());
+  EXPECT_EQ(wrong, 0);
+  EXPECT_GT(found[1], found[0]);
 }
 
 TEST_F(RelocaliserOnCornerWorld, RefusesMapsWithoutAMatchingKeypointLayer) {
