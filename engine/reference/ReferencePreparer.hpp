@@ -18,6 +18,7 @@
 #include "engine/reference/MarkerPoseEstimator.hpp"
 #include "engine/reference/MarkerSpec.hpp"
 #include "engine/reference/ReferenceMap.hpp"
+#include "engine/reference/ReferencePoseRefiner.hpp"
 
 namespace reftrack {
 
@@ -52,6 +53,10 @@ struct ReferencePreparerParams {
   // (matching.max_peak_offset_px 1.5 between B's corner and the peak it triangulated from, plus
   // matching.max_reprojection_error_px 1.0) admit a corner up to 2.5 px from its point.
   double maxTrackReprojectionErrorPx = 2.5;
+  // Refine the given (marker / --poses) poses of references 1..N-1 from the map's own matches,
+  // reference 0 and the scale held by the given poses (ReferencePoseRefiner); false: trust them.
+  bool refinePoses = true;
+  ReferencePoseRefinerParams poseRefinement;
   // The keypoint layer an N-reference map carries for relocalisation (buildReferenceKeypoints;
   // section `relocalisation`, as in the tracking parameters, whose keypoints must be the same
   // kind). enabled: false leaves the layer out. The two-reference preparation ignores it.
