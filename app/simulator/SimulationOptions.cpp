@@ -55,7 +55,7 @@ void SimulationOptions::check() const {
       throw Error("simulation distortion coefficients must be finite and within [-10, 10]");
   if (!(referenceBaseline >= 0.0 && referenceBaseline <= 1.0))
     throw Error(
-        "simulation reference_baseline must be 0 (the scene's default) or in (0, 1] m, got " +
+        "simulation referenceBaseline must be 0 (the scene's default) or in (0, 1] m, got " +
         std::to_string(referenceBaseline));
   if (references != 0 && (references < 2 || references > kMaxReferences))
     throw Error("simulation references must be 0 (the preset's default) or 2.." +

@@ -197,7 +197,7 @@ TEST_F(PrepareCommandTest, MarkerPosesAndTriangulatedPointsMatchTheSimulatorsGro
 
 TEST_F(PrepareCommandTest, KnownPosesFromATumFileGiveTheSamePoses) {
   const fs::path out = test::freshTempDir("PrepareCommand_poses") / "map";
-  // Without the pose refinement the given poses are used as they are.
+  // Without the pose refinement (also the default) the given poses are used as they are.
   const fs::path params = out.parent_path() / "given.yml";
   {
     std::ofstream f(params);
@@ -214,12 +214,18 @@ TEST_F(PrepareCommandTest, KnownPosesFromATumFileGiveTheSamePoses) {
   EXPECT_LT(RigidPose::rotationDistance(map.T_B, *truthB_), 1e-9);
   EXPECT_GE(map.matches.size(), 300u);
   EXPECT_NE(map.poseSource.find("references.txt"), std::string::npos);
-  // With it (the default), reference 0 stays exactly as given and B stays within the marker
-  // poses' bar of the truth (2 mm, 0.1 deg; measured on the 4 cm simulator pair with exact
-  // poses: 0.25 mm, 0.010 deg).
+  // With it (preparation.refine_poses: true), reference 0 stays exactly as given and B stays
+  // within the marker poses' bar of the truth (2 mm, 0.1 deg; measured on the 4 cm simulator pair
+  // with exact poses: 0.25 mm, 0.010 deg).
+  const fs::path refineParams = out.parent_path() / "refine.yml";
+  {
+    std::ofstream f(refineParams);
+    f << "preparation:\n  refine_poses: true\n";
+  }
   const fs::path refinedOut = out.parent_path() / "refined";
   const CommandRun refined =
-      runReftrack(commonArgs(refinedOut) + " --poses " + (*dir_ / "references.txt").string(),
+      runReftrack(commonArgs(refinedOut) + " --poses " + (*dir_ / "references.txt").string() +
+                      " --params " + refineParams.string(),
                   out.parent_path());
   ASSERT_EQ(refined.exitCode, 0) << refined.err;
   EXPECT_NE(refined.out.find("reference poses refined"), std::string::npos) << refined.out;

@@ -159,11 +159,7 @@ TEST(MultiReferencePreparer, FourKnownPosesGiveMultiViewPointsOnThePlane) {
 TEST(MultiReferencePreparer, TwoReferencesGiveTheTwoViewPreparationsPoints) {
   const FourViews& s = fourViews();
   const std::vector<ReferenceImage> two = {s.images[0], s.images[1]};
-  // The two-view preparation trusts the marker poses; so does this one (no pose refinement).
-  ReferencePreparerParams params;
-  params.refinePoses = false;
-  const MultiPreparation multi =
-      MultiReferencePreparer(s.scene.camera, params).prepare(two, marker());
+  const MultiPreparation multi = MultiReferencePreparer(s.scene.camera).prepare(two, marker());
   const Preparation pair = ReferencePreparer(s.scene.camera).prepare(two[0], two[1], marker());
   const ReferenceMap fromMulti = multi.map.pair(0, 1);
   ASSERT_EQ(fromMulti.matches.size(), pair.map.matches.size());
