@@ -153,6 +153,18 @@ void printSummary(const MultiPreparation& p, const std::vector<std::string>& nam
       "above the track reprojection gate, %d points; points seen by 3+ references reproject "
       "with RMS %.3f px\n",
       r.tracks, r.inconsistentTracks, r.droppedObservations, r.droppedPoints, r.multiViewRmsPx);
+  if (r.poseRefinement) {
+    std::printf(
+        "reference poses refined from the matches (reference 0 held): reprojection RMS "
+        "%.3f -> %.3f px over %d observations;",
+        r.poseRefinement->initialRmsPx, r.poseRefinement->finalRmsPx,
+        r.poseRefinement->observations);
+    for (std::size_t v = 1; v < r.poseRefinement->movedDeg.size(); ++v)
+      std::printf(" %zu moved %.2f mm, %.3f deg%s", v, r.poseRefinement->movedMillimetres[v],
+                  r.poseRefinement->movedDeg[v],
+                  v + 1 < r.poseRefinement->movedDeg.size() ? "," : "");
+    std::printf("\n");
+  }
   std::printf("wrote %s (format version %d, %d references)\n", out.c_str(),
               MultiReferenceMap::kFormatVersion, p.map.size());
 }

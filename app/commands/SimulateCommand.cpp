@@ -60,6 +60,9 @@ CommandRegistration registerSimulateCommand(CLI::App& parent) {
       ->check(CLI::Range(10.0, 150.0))
       ->capture_default_str();
   addDistortionOption(sub, o.distortion);
+  sub->add_option("--reference-baseline", o.referenceBaseline,
+                  "Metres from reference A to B, sideways (default: the scene's 0.25)")
+      ->check(CLI::Range(0.0, 1.0));
   sub->add_option("--references", o.references,
                   "Reference views: A, B, then views on the walkaround arc (default: walkaround 6, "
                   "other presets 2)")

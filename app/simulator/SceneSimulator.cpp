@@ -27,7 +27,11 @@ SceneSimulator::SceneSimulator(SimulationOptions options) : options_(std::move(o
     camera_ = PinholeCamera(camera_.K(), camera_.imageSize(), options_.distortion);
     if (camera_.hasDistortion()) lens_ = std::make_unique<DistortingLens>(camera_, kSupersample);
   }
-  const DeskScene scene = buildDeskScene();
+  DeskScene scene = buildDeskScene();
+  if (options_.referenceBaseline > 0.0)
+    scene.referenceEyeB =
+        scene.referenceEyeA +
+        options_.referenceBaseline * (scene.referenceEyeB - scene.referenceEyeA).normalized();
   marker_ = scene.marker;
   lookedAt_ = scene.contentCentre;
   references_ = placeReferenceViews(options_.referenceCount(), scene.referenceEyeA,

@@ -53,6 +53,10 @@ void SimulationOptions::check() const {
   for (double d : distortion)
     if (!(std::isfinite(d) && std::abs(d) <= 10.0))
       throw Error("simulation distortion coefficients must be finite and within [-10, 10]");
+  if (!(referenceBaseline >= 0.0 && referenceBaseline <= 1.0))
+    throw Error(
+        "simulation referenceBaseline must be 0 (the scene's default) or in (0, 1] m, got " +
+        std::to_string(referenceBaseline));
   if (references != 0 && (references < 2 || references > kMaxReferences))
     throw Error("simulation references must be 0 (the preset's default) or 2.." +
                 std::to_string(kMaxReferences) + ", got " + std::to_string(references));

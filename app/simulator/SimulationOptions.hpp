@@ -22,7 +22,9 @@ struct SimulationOptions {
   bool blur = false;        // motion blur (average of sub-frame renders)
   double fovDeg = 60.0;     // horizontal field of view
   double fps = 30.0;
-  int references = 0;     // reference views; 0: the preset's default (walkaround 6, others 2)
+  int references = 0;  // reference views; 0: the preset's default (walkaround 6, others 2)
+  // Distance from reference A to B (metres, sideways); 0: the scene's default (0.25 m).
+  double referenceBaseline = 0.0;
   CameraEffects effects;  // webcam effects (CameraEffects; all off by default)
   // Lens distortion, OpenCV order k1,k2,p1,p2[,k3]; empty (or all zero): an ideal pinhole.
   std::vector<double> distortion;

@@ -97,6 +97,7 @@ void writeSceneDescription(const SceneSimulator& sim, const fs::path& file, int 
     o.effects.write(out);
     out << "}";
     out << "reference_count" << o.referenceCount();
+    if (o.referenceBaseline > 0.0) out << "reference_baseline_m" << o.referenceBaseline;
     out << "poses"
         << "groundtruth.txt and references.txt: TUM, camera pose in the world (camera->world)";
     out.release();

@@ -314,6 +314,8 @@ MultiPreparation MultiReferencePreparer::build(const std::vector<ReferenceImage>
     ss << " do the images overlap, and are the poses (" << poseSource << ") right?";
     throw Error(ss.str());
   }
+  if (params_.refinePoses)
+    report.poseRefinement = refineReferencePoses(map, params_.poseRefinement);
   if (params_.relocalisation.enabled) buildReferenceKeypoints(map, params_.relocalisation);
   map.check();
   out.report = std::move(report);

@@ -43,6 +43,7 @@ struct MultiPreparationReport {
   int droppedPoints = 0;                  // fewer than two observations left, or behind a camera
   std::vector<int> observationHistogram;  // [k]: points seen by exactly k references
   double multiViewRmsPx = 0.0;  // reprojection RMS of the 3+-view points (their measurements)
+  std::optional<ReferencePoseRefinement> poseRefinement;  // when params.refinePoses
 };
 
 struct MultiPreparation {

@@ -66,6 +66,7 @@ void ReferencePreparerParams::check() const {
   requireIntInRange("preparation.min_matches", minMatches, 0, 10000000);
   requireFiniteInRange("preparation.max_pair_view_angle_deg", maxPairViewAngleDeg, 0.0, 180.0);
   requireIntInRange("preparation.min_pair_matches", minPairMatches, 1, 10000000);
+  poseRefinement.check();
   requireFiniteInRange("preparation.max_track_reprojection_error_px", maxTrackReprojectionErrorPx,
                        1e-3, 1e3);
   relocalisation.check();
@@ -88,7 +89,12 @@ void ReferencePreparerParams::write(cv::FileStorage& fs) const {
      << "{"
      << "min_baseline_m" << minBaselineMetres << "min_matches" << minMatches
      << "max_pair_view_angle_deg" << maxPairViewAngleDeg << "min_pair_matches" << minPairMatches
-     << "max_track_reprojection_error_px" << maxTrackReprojectionErrorPx << "}"
+     << "max_track_reprojection_error_px" << maxTrackReprojectionErrorPx << "refine_poses"
+     << (refinePoses ? "true" : "false") << "pose_prior_origin_sd_px" << poseRefinement.originSdPx
+     << "pose_prior_translation_sd_m" << poseRefinement.translationSdMetres
+     << "pose_prior_rotation_sd_deg" << poseRefinement.rotationSdDeg
+     << "pose_refinement_corner_sd_px" << poseRefinement.cornerSdPx << "pose_refinement_iterations"
+     << poseRefinement.maxIterations << "}"
      << "relocalisation"
      << "{";
   relocalisation.write(fs);
@@ -111,6 +117,17 @@ void ReferencePreparerParams::read(const cv::FileNode& root,
   readConfigValue(root["preparation"], "preparation", "min_pair_matches", minPairMatches);
   readConfigValue(root["preparation"], "preparation", "max_track_reprojection_error_px",
                   maxTrackReprojectionErrorPx);
+  readConfigValue(root["preparation"], "preparation", "refine_poses", refinePoses);
+  readConfigValue(root["preparation"], "preparation", "pose_prior_origin_sd_px",
+                  poseRefinement.originSdPx);
+  readConfigValue(root["preparation"], "preparation", "pose_prior_translation_sd_m",
+                  poseRefinement.translationSdMetres);
+  readConfigValue(root["preparation"], "preparation", "pose_prior_rotation_sd_deg",
+                  poseRefinement.rotationSdDeg);
+  readConfigValue(root["preparation"], "preparation", "pose_refinement_corner_sd_px",
+                  poseRefinement.cornerSdPx);
+  readConfigValue(root["preparation"], "preparation", "pose_refinement_iterations",
+                  poseRefinement.maxIterations);
   relocalisation.read(root["relocalisation"]);
   check();
 }

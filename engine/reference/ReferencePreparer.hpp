@@ -18,6 +18,7 @@
 #include "engine/reference/MarkerPoseEstimator.hpp"
 #include "engine/reference/MarkerSpec.hpp"
 #include "engine/reference/ReferenceMap.hpp"
+#include "engine/reference/ReferencePoseRefiner.hpp"
 
 namespace reftrack {
 
@@ -52,6 +53,14 @@ struct ReferencePreparerParams {
   // (matching.max_peak_offset_px 1.5 between B's corner and the peak it triangulated from, plus
   // matching.max_reprojection_error_px 1.0) admit a corner up to 2.5 px from its point.
   double maxTrackReprojectionErrorPx = 2.5;
+  // Refine the given (marker / --poses) poses of references 1..N-1 from the map's own matches,
+  // reference 0 and the scale held by the given poses (ReferencePoseRefiner). Off by default: the
+  // map keeps each observation's detected corner, while the points were triangulated from the
+  // correlation peaks the pairs found (up to matching.max_peak_offset_px away), so on exact poses
+  // the refinement fits the corners and the depth RMS of the simulator's maps grows 3 -> 5 mm; it
+  // pays where the given poses are off by a tenth of a degree or more (see README).
+  bool refinePoses = false;
+  ReferencePoseRefinerParams poseRefinement;
   // The keypoint layer an N-reference map carries for relocalisation (buildReferenceKeypoints;
   // section `relocalisation`, as in the tracking parameters, whose keypoints must be the same
   // kind). enabled: false leaves the layer out. The two-reference preparation ignores it.

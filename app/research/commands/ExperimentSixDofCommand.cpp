@@ -112,6 +112,9 @@ CommandRegistration registerExperimentSixDofCommand(CLI::App& parent) {
       ->check(CLI::IsMember(simulationPresets()));
   sub->add_option("--frames", o->simulation.frames, "Frames")->check(CLI::Range(3, 100000));
   sub->add_option("--size", o->size, "Image size WxH")->check(imageSizeValidator());
+  sub->add_option("--reference-baseline", o->simulation.referenceBaseline,
+                  "Metres from reference A to B, sideways (default: the scene's 0.25)")
+      ->check(CLI::Range(0.0, 1.0));
   sub->add_option("--references", o->simulation.references,
                   "Reference views (default: walkaround 6, others 2); with more than two, the "
                   "MultiReferenceTracker runs on all of them beside the two-reference PoseTracker "

@@ -67,6 +67,7 @@ std::string cacheKey(const SimulationOptions& o) {
       << "_fps" << o.fps << o.effects.key();
   for (std::size_t i = 0; i < o.distortion.size(); ++i)
     key << (i ? "," : "_dist") << o.distortion[i];
+  if (o.referenceBaseline > 0.0) key << "_baseline" << o.referenceBaseline;
   return key.str();
 }
 

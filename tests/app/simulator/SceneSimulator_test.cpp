@@ -106,6 +106,23 @@ TEST(SceneSimulatorLens, MarkerPoseEstimatorRecoversTheReferencePosesThroughTheL
   }
 }
 
+TEST(SceneSimulatorReferences, ReferenceBaselinePlacesBThatFarFromA) {
+  // --reference-baseline: B moves along the A->B direction of the scene (sideways), A stays.
+  const auto context = render::createHeadlessContext();
+  SimulationOptions o;
+  o.frames = 2;
+  const SceneSimulator wide(o);
+  o.referenceBaseline = 0.04;
+  const SceneSimulator narrow(o);
+  const Eigen::Vector3d a = narrow.referencePoses()[0].cameraCentre();
+  EXPECT_LT((a - wide.referencePoses()[0].cameraCentre()).norm(), 1e-12);
+  EXPECT_NEAR((narrow.referencePoses()[1].cameraCentre() - a).norm(), 0.04, 1e-12);
+  EXPECT_NEAR((wide.referencePoses()[1].cameraCentre() - a).norm(), 0.25, 1e-12);
+  const Eigen::Vector3d dirWide = (wide.referencePoses()[1].cameraCentre() - a).normalized();
+  const Eigen::Vector3d dirNarrow = (narrow.referencePoses()[1].cameraCentre() - a).normalized();
+  EXPECT_GT(dirWide.dot(dirNarrow), 1.0 - 1e-12);
+}
+
 TEST(SceneSimulatorReferences, TheMarkerPosesEveryWalkaroundReference) {
   // The extra views are posed from the marker by `reftrack prepare` like A and B: it must be
   // visible and accurate in each of them.

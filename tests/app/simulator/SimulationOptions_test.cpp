@@ -42,6 +42,8 @@ TEST(SimulationOptions, CheckNamesTheBadField) {
       {[](SimulationOptions& o) { o.fps = 0; }, "fps"},
       {[](SimulationOptions& o) { o.fps = std::numeric_limits<double>::infinity(); }, "fps"},
       {[](SimulationOptions& o) { o.references = 1; }, "references"},
+      {[](SimulationOptions& o) { o.referenceBaseline = -0.01; }, "referenceBaseline"},
+      {[](SimulationOptions& o) { o.referenceBaseline = std::nan(""); }, "referenceBaseline"},
       {[](SimulationOptions& o) { o.references = kMaxReferences + 1; }, "references"},
       {[](SimulationOptions& o) {
          o.distortion = {-0.3, 0.0, 0.0};

@@ -26,6 +26,7 @@ struct PostcardCardPoses {
   std::vector<cv::Point3f> card;                                   // the corners, world frame
   std::vector<std::optional<std::array<cv::Point2f, 4>>> corners;  // per frame, none if lost
   std::vector<std::optional<RigidPose>> poses;                     // per frame, from the corners
+  std::vector<std::optional<cv::Matx33d>> homographies;  // frame 0 -> frame k, where followed
   double aspectRatio = 0.0;  // of the card's rectangle (long / short side), best fit
   double aspectRms = 0.0;    // reprojection RMS (px) of that fit over a spread of frames
 
@@ -80,9 +81,11 @@ struct PostcardCardPoses {
     const std::array<cv::Point2f, 4> corners0 = refined(frames[0], clicked);
     HomographyTracker homography(frames[0], TrackerParams{});
     corners.assign(frames.size(), std::nullopt);
+    homographies.assign(frames.size(), std::nullopt);
     for (std::size_t k = 0; k < frames.size(); ++k) {
       const HomographyTrackResult h = homography.track(frames[k]);
       if (!h.tracked) continue;
+      homographies[k] = h.H;
       std::vector<cv::Point2f> in(corners0.begin(), corners0.end()), out;
       cv::perspectiveTransform(in, out, cv::Mat(h.H));
       std::array<cv::Point2f, 4> c;

@@ -11,10 +11,13 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <map>
+#include <opencv2/core.hpp>
 #include <optional>
 #include <vector>
 
 #include "engine/config/TrackerParams.hpp"
+#include "engine/reference/ReferencePoseRefiner.hpp"
 #include "engine/reference/ReferencePreparer.hpp"
 #include "engine/relocalisation/PostcardCardPoses.hpp"
 #include "engine/relocalisation/Relocaliser.hpp"
@@ -202,6 +205,110 @@ TEST_F(PoseTrackerRealFootage, MultiReferenceTrackerTracksTheClipAndStartsMidCli
                  std::to_string(started) + " of " + std::to_string(starts.size()));
   EXPECT_EQ(started, static_cast<int>(starts.size()));
   EXPECT_LT(percentile(startErrors, 1.0), 2.5);
+}
+
+// Real-footage diagnosis (issue 14 item 3): references 3.4 cm apart (frames 0 and 100), their
+// poses from the card corners (a fiducial good to a fraction of a pixel), the camera wandering
+// up to ~8 cm from both. The ground truth here is denser than the four card corners: a 7x7 grid
+// on the card, placed by frame 0's card pose and carried to every frame by the homography
+// tracker's H (cold and in-order registrations of this clip agree to 0.02-0.4 px), so the error
+// is what content on the card would show. The map is tracked as the card poses give it (before)
+// and after ReferencePoseRefiner has refined reference B's pose from the map's own matches;
+// each run prints its reasons for frames without a pose, tracked %, error mean / p95 and the
+// mean error by distance from the nearest reference.
+TEST_F(PoseTrackerRealFootage, ErrorAwayFromTheReferencesWithRefinedReferencePoses) {
+  const test::PostcardCardPoses& f = *clip_;
+  const PostcardReferences refs = prepareReferences(f);
+  ASSERT_FALSE(refs.map.matches.empty()) << "no postcard corners in frame 0 or 100";
+  ASSERT_TRUE(refs.corners[0].has_value());
+  MultiReferenceMap multi = MultiReferenceMap::fromPair(refs.map);
+  const ReferencePoseRefinement refinement = refineReferencePoses(multi);
+  const ReferenceMap refinedMap = multi.pair(0, 1);
+  std::printf(
+      "reference B refined: moved %.2f mm, %.3f deg; reprojection RMS %.3f -> %.3f px over %d "
+      "observations\n",
+      refinement.movedMillimetres[1], refinement.movedDeg[1], refinement.initialRmsPx,
+      refinement.finalRmsPx, refinement.observations);
+  ASSERT_TRUE(f.poses[0].has_value());
+  const RigidPose T0 = *f.poses[0];
+  const double w = refs.card[1].x, h = refs.card[3].y;
+  std::vector<Eigen::Vector3d> grid;
+  std::vector<cv::Point2f> grid0;
+  for (int i = 0; i < 7; ++i)
+    for (int j = 0; j < 7; ++j) {
+      grid.emplace_back(w * i / 6.0, h * j / 6.0, 0.0);
+      const Eigen::Vector2d p = refs.camera.project(T0, grid.back());
+      grid0.emplace_back(static_cast<float>(p.x()), static_cast<float>(p.y()));
+    }
+  // Camera centres from the card corners (for the distance to the references only).
+  std::vector<std::optional<Eigen::Vector3d>> centres(f.frames.size());
+  for (std::size_t k = 0; k < f.frames.size(); ++k)
+    if (f.poses[k]) centres[k] = f.poses[k]->cameraCentre();
+  const Eigen::Vector3d cA = refs.map.T_A.cameraCentre(), cB = refs.map.T_B.cameraCentre();
+
+  struct Run {
+    int tracked = 0;
+    std::vector<double> errors;
+    std::map<std::string, int> reasons;
+    std::array<std::vector<double>, 4> byDistance;  // < 2, 2-4, 4-6, >= 6 cm
+  };
+  auto run = [&](const ReferenceMap& map) {
+    PoseTracker tracker(map, TrackerParams{});
+    Run out;
+    for (std::size_t k = 0; k < f.frames.size(); ++k) {
+      const PoseTrackingResult r = tracker.process(f.frames[k]);
+      if (r.state != TrackingState::Tracking || !r.worldToCamera) {
+        out.reasons[r.message.substr(0, r.message.find(" ("))]++;
+        continue;
+      }
+      ++out.tracked;
+      if (!f.homographies[k] || !centres[k]) continue;
+      std::vector<cv::Point2f> truth;
+      cv::perspectiveTransform(grid0, truth, cv::Mat(*f.homographies[k]));
+      double sum = 0;
+      for (std::size_t i = 0; i < grid.size(); ++i) {
+        const Eigen::Vector2d p = refs.camera.project(*r.worldToCamera, grid[i]);
+        sum += std::hypot(p.x() - truth[i].x, p.y() - truth[i].y);
+      }
+      const double e = sum / static_cast<double>(grid.size());
+      out.errors.push_back(e);
+      const double d = std::min((*centres[k] - cA).norm(), (*centres[k] - cB).norm());
+      out.byDistance[std::min<std::size_t>(3, static_cast<std::size_t>(d / 0.02))].push_back(e);
+    }
+    return out;
+  };
+  auto mean = [](const std::vector<double>& v) {
+    double s = 0;
+    for (double x : v) s += x;
+    return v.empty() ? std::nan("") : s / static_cast<double>(v.size());
+  };
+  const Run before = run(refs.map), after = run(refinedMap);
+  for (const auto& [name, r] :
+       {std::pair{"card poses", &before}, std::pair{"refined reference poses", &after}}) {
+    std::printf(
+        "postcard, %s: tracked %d/%zu, grid error mean %.3f px, p95 %.3f px, max %.3f px; mean by "
+        "distance from the nearest reference <2 cm %.3f (%zu), 2-4 cm %.3f (%zu), 4-6 cm %.3f "
+        "(%zu), >=6 cm %.3f (%zu)\n",
+        name, r->tracked, f.frames.size(), mean(r->errors), percentile(r->errors, 0.95),
+        percentile(r->errors, 1.0), mean(r->byDistance[0]), r->byDistance[0].size(),
+        mean(r->byDistance[1]), r->byDistance[1].size(), mean(r->byDistance[2]),
+        r->byDistance[2].size(), mean(r->byDistance[3]), r->byDistance[3].size());
+    for (const auto& [reason, count] : r->reasons)
+      std::printf("  no pose: %d x %s\n", count, reason.c_str());
+  }
+  RecordProperty("grid_error_mean_px", std::to_string(mean(after.errors)));
+  RecordProperty("grid_error_p95_px", std::to_string(percentile(after.errors, 0.95)));
+  // Measured (refined: B turned 0.056 deg, moved 0.84 mm; map RMS 0.52 -> 0.28 px): every frame
+  // tracked both ways; grid error mean 0.813 -> 0.655 px, p95 1.846 -> 1.615 px, 2-4 cm from
+  // the references 1.79 -> 1.57 px. The ground truth carries the guessed K and frame 0's card
+  // pose (0.5 px at the references themselves), so the bounds leave ~20% above the refined
+  // figures, and the refinement must not make the error worse.
+  EXPECT_EQ(after.tracked, static_cast<int>(f.frames.size()));
+  EXPECT_TRUE(after.reasons.empty());
+  EXPECT_LT(mean(after.errors), mean(before.errors));
+  EXPECT_LT(mean(after.errors), 0.8);
+  EXPECT_LT(percentile(after.errors, 0.95), 1.9);
+  EXPECT_LT(refinement.movedDeg[1], 0.2);
 }
 
 }  // namespace
