@@ -12,22 +12,12 @@
 #include <random>
 
 #include "engine/core/Error.hpp"
+#include "engine/geometry/LookAt.hpp"
 
 namespace reftrack {
 namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
-
-RigidPose lookAt(const Eigen::Vector3d& eye, const Eigen::Vector3d& target) {
-  const Eigen::Vector3d z = (target - eye).normalized();
-  const Eigen::Vector3d x = z.cross(Eigen::Vector3d::UnitZ()).normalized();
-  const Eigen::Vector3d y = z.cross(x);
-  Eigen::Matrix3d R;
-  R.row(0) = x.transpose();
-  R.row(1) = y.transpose();
-  R.row(2) = z.transpose();
-  return RigidPose(R, -R * eye);
-}
 
 double angleDeg(const RigidPose& a, const RigidPose& b) {
   return Eigen::AngleAxisd(a.rotation() * b.rotation().transpose()).angle() / kDeg;
@@ -44,8 +34,8 @@ Scene makeScene(double turnDeg, double noisePx) {
   Scene s;
   s.map.camera = PinholeCamera::fromFieldOfView(cv::Size(640, 480), 60.0);
   const Eigen::Vector3d eyeA(-0.12, -0.52, 0.74), target(0.0, 0.05, 0.05);
-  const RigidPose A = lookAt(eyeA, target);
-  s.trueB = lookAt(eyeA + Eigen::Vector3d(0.04, 0, 0), target);
+  const RigidPose A = lookAtPose(eyeA, target);
+  s.trueB = lookAtPose(eyeA + Eigen::Vector3d(0.04, 0, 0), target);
   const RigidPose turn(
       Eigen::AngleAxisd(turnDeg * kDeg, Eigen::Vector3d::UnitZ()).toRotationMatrix(),
       Eigen::Vector3d::Zero());
