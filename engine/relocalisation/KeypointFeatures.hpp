@@ -35,4 +35,8 @@ class KeypointFeatures {
 std::vector<cv::DMatch> matchDescriptors(const cv::Mat& query, const cv::Mat& train, int normType,
                                          double ratio, bool mutual);
 
+// The distance of row `rowA` of descriptors `a` to row `rowB` of `b` (same type and length) under
+// normType: what cv::norm gives, with the CPU's popcount for Hamming.
+float descriptorDistance(const cv::Mat& a, int rowA, const cv::Mat& b, int rowB, int normType);
+
 }  // namespace reftrack

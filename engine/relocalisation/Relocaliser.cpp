@@ -276,8 +276,10 @@ void Relocaliser::Impl::guidedMatches(const std::vector<cv::KeyPoint>& keypoints
           for (int k : grid[static_cast<std::size_t>(y * cols + x)]) {
             const cv::Point2f d = keypoints[static_cast<std::size_t>(k)].pt - u;
             if (d.x * d.x + d.y * d.y > r2) continue;
-            const double distance = cv::norm(
-                descriptors.row(k), ref.descriptors.row(static_cast<int>(p)), features.normType());
+            // descriptorDistance, not cv::norm: this Debian OpenCV's Hamming norm has no
+            // hardware popcount; measured 6.7 -> 2.7 ms of guided matching per attempt.
+            const double distance = descriptorDistance(descriptors, k, ref.descriptors,
+                                                       static_cast<int>(p), features.normType());
             Guided& b = best[static_cast<std::size_t>(k)];
             if (distance <= maxDistance && (b.reference < 0 || distance < b.distance))
               b = {static_cast<int>(r), static_cast<int>(p), distance};

@@ -47,6 +47,28 @@ TEST(MatchDescriptors, HammingAgreesWithOpenCvBruteForce) {
   }
 }
 
+// descriptorDistance is cv::norm's distance, exactly, for ORB and AKAZE rows (Hamming) and SIFT
+// rows (L2, float): random rows, every pair of the first 20 x 20.
+TEST(DescriptorDistance, EqualsOpenCvNorm) {
+  cv::RNG rng(5);
+  for (const int bytes : {32, 61}) {
+    cv::Mat a(20, bytes, CV_8U), b(20, bytes, CV_8U);
+    rng.fill(a, cv::RNG::UNIFORM, 0, 256);
+    rng.fill(b, cv::RNG::UNIFORM, 0, 256);
+    for (int i = 0; i < a.rows; ++i)
+      for (int j = 0; j < b.rows; ++j)
+        ASSERT_EQ(descriptorDistance(a, i, b, j, cv::NORM_HAMMING),
+                  static_cast<float>(cv::norm(a.row(i), b.row(j), cv::NORM_HAMMING)))
+            << bytes << " bytes, rows " << i << ", " << j;
+  }
+  cv::Mat a(20, 128, CV_32F), b(20, 128, CV_32F);
+  rng.fill(a, cv::RNG::UNIFORM, 0.0, 255.0);
+  rng.fill(b, cv::RNG::UNIFORM, 0.0, 255.0);
+  for (int i = 0; i < a.rows; ++i)
+    EXPECT_FLOAT_EQ(descriptorDistance(a, i, b, 19 - i, cv::NORM_L2),
+                    static_cast<float>(cv::norm(a.row(i), b.row(19 - i), cv::NORM_L2)));
+}
+
 TEST(MatchDescriptors, RefusesDescriptorsOfDifferentLengths) {
   const cv::Mat a(10, 32, CV_8U, cv::Scalar(1)), b(10, 61, CV_8U, cv::Scalar(1));
   EXPECT_THROW(matchDescriptors(a, b, cv::NORM_HAMMING, 0.8, false), Error);
