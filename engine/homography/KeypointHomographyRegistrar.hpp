@@ -35,13 +35,14 @@ class KeypointHomographyRegistrar {
   KeypointRegistration registerFrame(const cv::Mat& frame) const;
 
   int referenceKeypoints() const { return static_cast<int>(views_.front().keypoints.size()); }
-  int views() const {
-    return static_cast<int>(views_.size());
-  }  // 1 + homography.keypoint_tilt_views
+  // 1 + homography.keypoint_tilt_views (+ 1 with ORB: the reference with finer levels, for
+  // zoomed-in frames)
+  int views() const { return static_cast<int>(views_.size()); }
 
  private:
   // The reference's keypoints (positions in the reference's pixels) and descriptors, detected
-  // on the reference itself (views_[0]) or on a synthetic tilted view of it.
+  // on the reference itself (views_[0]), on a synthetic tilted view of it, or (ORB, last) on
+  // the reference with finer pyramid levels.
   struct View {
     std::vector<cv::KeyPoint> keypoints;
     cv::Mat descriptors;

@@ -164,6 +164,36 @@ int hammingDistance(const std::uint8_t* a, const std::uint8_t* b, int bytes) {
   return bytes == 32 ? hamming<4>(a, b, bytes) : hamming<0>(a, b, bytes);
 }
 
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+__attribute__((target_clones("popcnt", "default")))
+#endif
+void hammingMatrixScalar(const cv::Mat& query, const cv::Mat& train, cv::Mat& out) {
+  for (int q = 0; q < query.rows; ++q) {
+    const std::uint8_t* a = query.ptr<std::uint8_t>(q);
+    float* row = out.ptr<float>(q);
+    for (int t = 0; t < train.rows; ++t)
+      row[t] = static_cast<float>(query.cols == 32
+                                      ? hamming<4>(a, train.ptr<std::uint8_t>(t), 32)
+                                      : hamming<0>(a, train.ptr<std::uint8_t>(t), query.cols));
+  }
+}
+
+#ifdef REFTRACK_HAVE_VPOPCNT
+__attribute__((target("avx2,avx512f,avx512vl,avx512vpopcntdq"))) void hammingMatrixOrbVpopcnt(
+    const cv::Mat& query, const cv::Mat& train, cv::Mat& out) {
+  for (int q = 0; q < query.rows; ++q) {
+    const __m256i a = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(query.ptr(q)));
+    float* row = out.ptr<float>(q);
+    for (int t = 0; t < train.rows; ++t) {
+      const __m256i p = _mm256_popcnt_epi64(
+          _mm256_xor_si256(a, _mm256_loadu_si256(reinterpret_cast<const __m256i*>(train.ptr(t)))));
+      const __m128i h = _mm_add_epi64(_mm256_castsi256_si128(p), _mm256_extracti128_si256(p, 1));
+      row[t] = static_cast<float>(_mm_cvtsi128_si64(h) + _mm_extract_epi64(h, 1));
+    }
+  }
+}
+#endif
+
 std::vector<NearestTwo> nearestTwo(const cv::Mat& query, const cv::Mat& train, int normType) {
   std::vector<NearestTwo> out;
   if (normType == cv::NORM_HAMMING) {
@@ -210,6 +240,26 @@ std::vector<cv::DMatch> matchDescriptors(const cv::Mat& query, const cv::Mat& tr
     if (mutual && backward[static_cast<std::size_t>(t)] != q) continue;
     out.emplace_back(q, t, distance[static_cast<std::size_t>(q)]);
   }
+  return out;
+}
+
+cv::Mat descriptorDistances(const cv::Mat& query, const cv::Mat& train, int normType) {
+  if (query.empty() || train.empty()) return cv::Mat(query.rows, train.rows, CV_32F);
+  if (query.cols != train.cols || query.type() != train.type())
+    throw Error("descriptor distances: query and train descriptors differ in type or length");
+  if (normType != cv::NORM_HAMMING || query.type() != CV_8U) {
+    cv::Mat out;
+    cv::batchDistance(query, train, out, CV_32F, cv::noArray(), normType);
+    return out;
+  }
+  cv::Mat out(query.rows, train.rows, CV_32F);
+#ifdef REFTRACK_HAVE_VPOPCNT
+  if (query.cols == 32 && cpuHasVpopcnt()) {
+    hammingMatrixOrbVpopcnt(query, train, out);
+    return out;
+  }
+#endif
+  hammingMatrixScalar(query, train, out);
   return out;
 }
 

@@ -35,6 +35,10 @@ class KeypointFeatures {
 std::vector<cv::DMatch> matchDescriptors(const cv::Mat& query, const cv::Mat& train, int normType,
                                          double ratio, bool mutual);
 
+// All distances of query rows (matrix rows) to train rows (columns), CV_32F: cv::batchDistance's
+// result, with the CPU's popcount for Hamming (this OpenCV's Hamming has none).
+cv::Mat descriptorDistances(const cv::Mat& query, const cv::Mat& train, int normType);
+
 // The distance of row `rowA` of descriptors `a` to row `rowB` of `b` (same type and length) under
 // normType: what cv::norm gives, with the CPU's popcount for Hamming.
 float descriptorDistance(const cv::Mat& a, int rowA, const cv::Mat& b, int rowB, int normType);

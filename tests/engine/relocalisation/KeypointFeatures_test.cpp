@@ -69,6 +69,30 @@ TEST(DescriptorDistance, EqualsOpenCvNorm) {
                     static_cast<float>(cv::norm(a.row(i), b.row(19 - i), cv::NORM_L2)));
 }
 
+// descriptorDistances is cv::batchDistance's matrix, exactly (ORB, AKAZE and SIFT rows).
+TEST(DescriptorDistances, EqualBatchDistance) {
+  cv::RNG rng(6);
+  for (const int bytes : {32, 61}) {
+    cv::Mat a(37, bytes, CV_8U), b(53, bytes, CV_8U);
+    rng.fill(a, cv::RNG::UNIFORM, 0, 256);
+    rng.fill(b, cv::RNG::UNIFORM, 0, 256);
+    cv::Mat expected;
+    cv::batchDistance(a, b, expected, CV_32S, cv::noArray(), cv::NORM_HAMMING);
+    expected.convertTo(expected, CV_32F);
+    const cv::Mat ours = descriptorDistances(a, b, cv::NORM_HAMMING);
+    ASSERT_EQ(ours.type(), CV_32F);
+    ASSERT_EQ(ours.size(), expected.size());
+    EXPECT_EQ(cv::norm(ours, expected, cv::NORM_INF), 0.0) << bytes << " bytes";
+  }
+  cv::Mat a(20, 128, CV_32F), b(30, 128, CV_32F), expected;
+  rng.fill(a, cv::RNG::UNIFORM, 0.0, 255.0);
+  rng.fill(b, cv::RNG::UNIFORM, 0.0, 255.0);
+  cv::batchDistance(a, b, expected, CV_32F, cv::noArray(), cv::NORM_L2);
+  EXPECT_EQ(cv::norm(descriptorDistances(a, b, cv::NORM_L2), expected, cv::NORM_INF), 0.0);
+  EXPECT_THROW(descriptorDistances(a, cv::Mat(5, 61, CV_8U, cv::Scalar(0)), cv::NORM_HAMMING),
+               Error);
+}
+
 TEST(MatchDescriptors, RefusesDescriptorsOfDifferentLengths) {
   const cv::Mat a(10, 32, CV_8U, cv::Scalar(1)), b(10, 61, CV_8U, cv::Scalar(1));
   EXPECT_THROW(matchDescriptors(a, b, cv::NORM_HAMMING, 0.8, false), Error);
