@@ -320,7 +320,7 @@ CommandRegistration registerExperimentHomographyCommand(CLI::App& parent) {
       "frame-corner\n"
       "error <= 1 px, wrong = tracked with a larger one; tables by tilt and by scale.\n"
       "pairs: every sequence folder under --data (img1..6.png, H1toNp.xml): the real pairs\n"
-      "img1 -> imgN and img1 warped by exact homographies (tilt 20-60 deg; zoom 0.5-2 with\n"
+      "img1 -> imgN and img1 warped by exact homographies (tilt 20-60 deg; zoom 0.5-3.5 with\n"
       "rotation), registered by reftrack (cold), reftrack without keypoints, and OpenCV SIFT,\n"
       "AKAZE and ORB + ratio test + findHomography RANSAC. One thread.");
   return {sub, [args, sub] {

@@ -37,6 +37,8 @@ constexpr ViewSpec kViews[] = {
     {"zoom-rotation", 0, 0, 0.5, 45},  {"zoom-rotation", 0, 0, 0.7, 120},
     {"zoom-rotation", 0, 0, 1.4, 200}, {"zoom-rotation", 0, 0, 2.0, 300},
     {"zoom-rotation", 0, 0, 0.6, 270}, {"zoom-rotation", 0, 0, 1.7, 90},
+    // Beyond item 4's 0.5-2x, like the Oxford boat / bark pairs (zoom to ~4x with rotation).
+    {"zoom-rotation", 0, 0, 2.8, 150}, {"zoom-rotation", 0, 0, 3.5, 60},
 };
 
 cv::Matx33d readHomography(const std::filesystem::path& file) {

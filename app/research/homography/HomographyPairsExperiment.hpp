@@ -2,7 +2,7 @@
 // Registration of real image pairs with known homographies: for every sequence folder of a data
 // directory laid out like the Oxford affine benchmark (img1.png..img6.png, H1to{N}p.xml), the
 // real pairs img1 -> imgN, plus views synthesised from img1 with exact homographies — a plane
-// tilted out of the image by 20-60 degrees (viewpoint, like graf/wall) and zoom 0.5-2 with
+// tilted out of the image by 20-60 degrees (viewpoint, like graf/wall) and zoom 0.5-3.5 with
 // in-plane rotation (like boat/bark). The tracker (cold: reset before each pair) and plain
 // OpenCV baselines (OpenCvFeatureBaseline) register the very same pairs. Error: mean
 // registration error at the frame's four corners (frameCornerError).
