@@ -161,7 +161,16 @@ std::vector<WideBaselineMatch> WideBaselineMatcher::match(
     inReference.push_back(reference.corners.at(static_cast<std::size_t>(m.referenceCorner)));
     inPrevious.push_back(m.previous);
   }
-  const CornerGrid previousGrid(inReference, reference.imageF.size(), 40);
+  // Cells holding about two previous matches each: the neighbour search below widens its square
+  // from 40 px until it holds 8 of them, which on a sparse map with fixed 40 px cells meant
+  // visiting 34-115 mostly empty cells per reference corner (real postcard clip, 35 previous
+  // matches: 2.5 queries per corner; callgrind: CornerGrid::query 5.9% -> 4.4% of a tracked
+  // frame's instructions). The same neighbours, so the same matches.
+  const double referenceArea =
+      static_cast<double>(reference.imageF.cols) * static_cast<double>(reference.imageF.rows);
+  const int previousCell = std::max(
+      40, static_cast<int>(std::sqrt(2.0 * referenceArea / static_cast<double>(previous.size()))));
+  const CornerGrid previousGrid(inReference, reference.imageF.size(), previousCell);
 
   std::vector<int> candidates, nearby;
   std::vector<float> warped(static_cast<std::size_t>(count));

@@ -21,7 +21,7 @@ struct BenchRealArgs {
   std::filesystem::path clip = "../shared/data/planar-videos/video-postcard.mp4";
   RealFootageOptions options = RealFootageOptions::postcard({});
   std::vector<float> target;  // --target: 8 numbers, or empty for the postcard's corners
-  std::filesystem::path params, prepareParams;
+  std::filesystem::path params, prepareParams, trajectory;
 };
 
 void printRun(const RealFootageRun& r) {
@@ -74,6 +74,8 @@ CommandRegistration registerBenchRealCommand(CLI::App& parent) {
   sub->add_option("--prepare-params", a->prepareParams, "`prepare --params` YAML for the map")
       ->check(CLI::ExistingFile);
   sub->add_flag("!--no-baseline", a->options.baseline, "Skip the ORB + PnP + Kalman baseline");
+  sub->add_option("--trajectory", a->trajectory,
+                  "Write reftrack's poses (TUM, world = the card; time = frame / fps)");
   // Usage errors (exit 2): checked when the command line is parsed, before anything is read.
   sub->callback([a] {
     const std::vector<int>& refs = a->options.references;
@@ -107,6 +109,7 @@ CommandRegistration registerBenchRealCommand(CLI::App& parent) {
                 a->prepareParams.empty() ? ReferencePreparerParams{}
                                          : ReferencePreparerParams::load(a->prepareParams);
             const RealFootageResult r = runRealFootageBenchmark(o, params, prepareParams);
+            if (!a->trajectory.empty()) r.reftrack.estimate.save(a->trajectory);
             std::printf(
                 "%s: %d frames read, %dx%d; card followed in %d, aspect %.3f (PnP RMS %.2f px)\n",
                 o.clip.string().c_str(), r.clipFrames, r.frameSize.width, r.frameSize.height,

@@ -192,6 +192,7 @@ RealFootageResult runRealFootageBenchmark(const RealFootageOptions& o, const Tra
           continue;
         }
         ++run.tracked;
+        run.estimate.poses.push_back({k / clip.fps, *r.worldToCamera});
         scorer.score(static_cast<std::size_t>(k), *r.worldToCamera, run);
       }
     }
@@ -211,6 +212,7 @@ RealFootageResult runRealFootageBenchmark(const RealFootageOptions& o, const Tra
         continue;
       }
       ++run.tracked;
+      run.estimate.poses.push_back({k / clip.fps, *pose});
       scorer.score(static_cast<std::size_t>(k), *pose, run);
     }
   }

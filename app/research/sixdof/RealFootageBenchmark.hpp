@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "engine/config/TrackerParams.hpp"
+#include "engine/geometry/TumTrajectory.hpp"
 #include "engine/reference/ReferencePreparer.hpp"
 
 namespace reftrack::app {
@@ -47,6 +48,7 @@ struct RealFootageRun {
   std::vector<double> trackedCpuMs;  // thread CPU of every tracked frame, all passes
   std::map<std::string, std::vector<double>> stageMs;  // PoseTracker stages (wall), first pass
   std::map<std::string, int> noPose;                   // reason -> frames (first pass)
+  TumTrajectory estimate;  // first pass, tracked frames (timestamp: frame index / clip fps)
   double trackedPercent() const { return frames > 0 ? 100.0 * tracked / frames : 0.0; }
 };
 
