@@ -89,8 +89,15 @@ bool fitLocalAffine(cv::Point2d p, const std::vector<cv::Point2f>& src,
   }
   const int available = static_cast<int>(byDistance.size());
   const int most = std::min(std::max(k, 8), available);
-  std::partial_sort(byDistance.begin(), byDistance.begin() + most, byDistance.end());
+  // Sorted lazily: the first k nearest suffice unless they are collinear, and the pairs (with
+  // their distinct indices) have one sorted order, so the neighbours are those of a full
+  // partial_sort to `most` (which cost a third of this function on the real postcard clip).
+  int sorted = std::min(k, available);
+  std::partial_sort(byDistance.begin(), byDistance.begin() + sorted, byDistance.end());
   for (int count = std::min(k, available); count <= most; ++count) {
+    for (; sorted < count; ++sorted)
+      std::iter_swap(byDistance.begin() + sorted,
+                     std::min_element(byDistance.begin() + sorted, byDistance.end()));
     // Centred on the pairs' mean for conditioning; 3x3 normal equations (fixed size).
     cv::Point2d mean(0, 0);
     for (int j = 0; j < count; ++j)
