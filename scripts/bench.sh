@@ -2,7 +2,8 @@
 # Speed and accuracy benchmarks (single thread), each against its baseline measured in the same
 # run: homography mode vs ORB + findHomography, 6-DOF vs ORB + solvePnPRansac + KalmanFilter;
 # issue 13: the walkaround with N references (and its two-reference coverage), cold start,
-# kidnapped camera and the cost of N references vs two (ORB + solvePnPRansac cold start beside).
+# kidnapped camera and the cost of N references vs two (ORB + solvePnPRansac cold start beside);
+# issue 14: 6-DOF on the real postcard clip (../shared/data, skipped when absent) vs ORB + PnP.
 # Usage: bench.sh [frames]   (default 300 frames per 6-DOF sequence; the walkaround runs 1000)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -23,5 +24,11 @@ done
   --no-baseline --out "$out/6dof-walkaround"
 "$build/app/reftrack" experiment-relocalisation --references 8 --cold-starts 200 --kidnaps 100 \
   --out-csv "$out/relocalisation.csv"
+postcard="$root/../shared/data/planar-videos/video-postcard.mp4"
+if [[ -f "$postcard" ]]; then
+  "$build/app/reftrack" bench-real --clip "$postcard" --passes 5
+else
+  echo "bench-real skipped: $postcard not found (the shared real recordings)"
+fi
 # HD speed: homography and 6-DOF at 640x480, 1280x720 and 1920x1080 (thread CPU, baselines beside)
 bash "$root/scripts/bench-hd.sh" "$frames"

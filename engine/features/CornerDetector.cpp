@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <opencv2/core/hal/intrin.hpp>
 #include <opencv2/features2d.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -22,9 +23,15 @@ struct Candidate {
 // Harris measure det(M) - k tr(M)^2 of the structure tensor summed over a block around (x, y),
 // from central differences. Computed only at FAST candidates: on a 640x480 frame this costs
 // ~0.1 ms against ~2.2 ms for cv::cornerHarris over the whole image (measured, one core).
+float harrisFromSums(int sxx, int syy, int sxy, double k) {
+  // The sums are of doubled central differences (exact integers), scaled once here.
+  const double xx = 0.25 * sxx, yy = 0.25 * syy, xy = 0.25 * sxy, tr = xx + yy;
+  return static_cast<float>(xx * yy - xy * xy - k * tr * tr);
+}
+
 float harrisAt(const cv::Mat& img, int x, int y, int half, double k) {
   // Integer sums of the doubled central differences (exact: |2 g| <= 255, a 7x7 block of squares
-  // stays below 2^22), scaled once at the end; 3x faster than summing doubles per pixel.
+  // stays below 2^22); 3x faster than summing doubles per pixel.
   int sxx = 0, syy = 0, sxy = 0;
   for (int v = y - half; v <= y + half; ++v) {
     const uchar* up = img.ptr<uchar>(v - 1);
@@ -38,9 +45,45 @@ float harrisAt(const cv::Mat& img, int x, int y, int half, double k) {
       sxy += gx * gy;
     }
   }
-  const double xx = 0.25 * sxx, yy = 0.25 * syy, xy = 0.25 * sxy, tr = xx + yy;
-  return static_cast<float>(xx * yy - xy * xy - k * tr * tr);
+  return harrisFromSums(sxx, syy, sxy, k);
 }
+
+#if CV_SIMD128
+// The same sums, eight pixels of a block row at a time with OpenCV's universal intrinsics
+// (SSE2/NEON): 16-bit differences, exact 32-bit dot products, lanes past the block masked to
+// zero, so the result is bit-identical to harrisAt. The scalar loop was most of a 640x480
+// tracked frame's corner detection (~3500 FAST candidates scored per frame on the real postcard
+// clip); measured with callgrind on that clip: 2.7 -> 1.2 M instructions per frame in detect()
+// itself, the same corners.
+// Reads up to 8 pixels right of the block: the caller checks x + half + 8 < cols.
+float harrisAtSimd(const cv::Mat& img, int x, int y, int half, double k) {
+  alignas(16) static const short kLaneMasks[9][8] = {
+      {0, 0, 0, 0, 0, 0, 0, 0},        {-1, 0, 0, 0, 0, 0, 0, 0},
+      {-1, -1, 0, 0, 0, 0, 0, 0},      {-1, -1, -1, 0, 0, 0, 0, 0},
+      {-1, -1, -1, -1, 0, 0, 0, 0},    {-1, -1, -1, -1, -1, 0, 0, 0},
+      {-1, -1, -1, -1, -1, -1, 0, 0},  {-1, -1, -1, -1, -1, -1, -1, 0},
+      {-1, -1, -1, -1, -1, -1, -1, -1}};
+  cv::v_int32x4 sxx = cv::v_setzero_s32(), syy = cv::v_setzero_s32(), sxy = cv::v_setzero_s32();
+  for (int v = y - half; v <= y + half; ++v) {
+    const uchar* up = img.ptr<uchar>(v - 1);
+    const uchar* row = img.ptr<uchar>(v);
+    const uchar* down = img.ptr<uchar>(v + 1);
+    for (int u = x - half; u <= x + half; u += 8) {
+      const cv::v_int16x8 mask = cv::v_load(kLaneMasks[std::min(8, x + half + 1 - u)]);
+      const cv::v_int16x8 gx = (cv::v_reinterpret_as_s16(cv::v_load_expand(row + u + 1)) -
+                                cv::v_reinterpret_as_s16(cv::v_load_expand(row + u - 1))) &
+                               mask;
+      const cv::v_int16x8 gy = (cv::v_reinterpret_as_s16(cv::v_load_expand(down + u)) -
+                                cv::v_reinterpret_as_s16(cv::v_load_expand(up + u))) &
+                               mask;
+      sxx += cv::v_dotprod(gx, gx);
+      syy += cv::v_dotprod(gy, gy);
+      sxy += cv::v_dotprod(gx, gy);
+    }
+  }
+  return harrisFromSums(cv::v_reduce_sum(sxx), cv::v_reduce_sum(syy), cv::v_reduce_sum(sxy), k);
+}
+#endif
 
 int pyramidLevelFor(cv::Size size, bool detectAtPaperScale) {
   if (!detectAtPaperScale) return 0;
@@ -130,7 +173,12 @@ std::vector<Corner> CornerDetector::detect(const cv::Mat& image) const {
   for (const cv::KeyPoint& kp : keypoints) {
     const int x = static_cast<int>(kp.pt.x), y = static_cast<int>(kp.pt.y);
     if (x < border || y < border || x >= work.cols - border || y >= work.rows - border) continue;
+#if CV_SIMD128
+    const float r = x + half + 8 < work.cols ? harrisAtSimd(work, x, y, half, params_.harrisK)
+                                             : harrisAt(work, x, y, half, params_.harrisK);
+#else
     const float r = harrisAt(work, x, y, half, params_.harrisK);
+#endif
     if (r <= 0.0f) continue;
     best = std::max(best, r);
     int& slot = bestInBucket[static_cast<size_t>(static_cast<int>(y / bucket) * bucketCols +
