@@ -29,7 +29,9 @@ struct Range {
   T lo, hi;
   template <class Value>
   void check(const std::string& name, const Value& value) const {
-    static_assert(std::is_same_v<Value, T>, "a Range's bounds have the type of its field");
+    static_assert(
+        std::is_same_v<Value, T> || (std::is_same_v<Value, float> && std::is_same_v<T, double>),
+        "a Range's bounds have the type of its field (double for a float)");
     if constexpr (std::is_floating_point_v<T>)
       requireFiniteInRange(name, value, lo, hi);
     else
@@ -68,6 +70,9 @@ struct Unchecked {
   void check(const std::string&, const T&) const {}
 };
 
+// A bool written as 1 / 0 instead of true / false (read either way).
+struct WrittenAsNumber : Unchecked {};
+
 // The visitors fields() is walked with.
 class FieldWriter {
  public:
@@ -76,6 +81,8 @@ class FieldWriter {
   void operator()(const char* key, const T& value, const Rule& rule = {}) const {
     if constexpr (std::is_enum_v<T>)
       fs_ << key << rule.name(value);
+    else if constexpr (std::is_same_v<T, bool> && std::is_same_v<Rule, WrittenAsNumber>)
+      fs_ << key << static_cast<int>(value);
     else if constexpr (std::is_same_v<T, bool>)
       fs_ << key << (value ? "true" : "false");
     else
@@ -102,6 +109,10 @@ class FieldReader {
       std::string name = rule.name(value);
       readConfigValue(node_, section_, key, name);
       value = rule.parse(name);
+    } else if constexpr (std::is_same_v<T, float>) {  // read as a double
+      double number = value;
+      readConfigValue(node_, section_, key, number);
+      value = static_cast<float>(number);
     } else {
       readConfigValue(node_, section_, key, value);
     }

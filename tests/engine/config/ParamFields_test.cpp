@@ -38,6 +38,8 @@ struct Box : ParamSection<Box> {
   bool enabled = true;
   std::string label = "front";
   Shade shade = Shade::Dark;
+  float width = 1.5f;
+  bool dots = false;
   Inner inner;
   template <class Self, class Field>
   static void fields(Self& p, const Field& field) {
@@ -46,6 +48,8 @@ struct Box : ParamSection<Box> {
     field("enabled", p.enabled);
     field("label", p.label);
     field("shade", p.shade, TextForm<Shade>{shadeName, parseShade});
+    field("width", p.width, Range{0.5, 2.0});
+    field("dots", p.dots, WrittenAsNumber{});
     field(p.inner);
   }
 };
@@ -68,10 +72,11 @@ std::string readError(const std::string& yaml) {
 
 }  // namespace
 
-TEST(ParamFields, WritesEveryFieldInListOrderWithBooleansAndEnumsAsWords) {
+TEST(ParamFields, WritesEveryFieldInListOrderWithBooleansAndEnumsAsWordsUnlessSaidOtherwise) {
   EXPECT_EQ(yamlOf(Box{}),
             "%YAML:1.0\n---\nbox:\n   count: 4\n   ratio: 5.0000000000000000e-01\n"
-            "   enabled: true\n   label: front\n   shade: dark\n   inner:\n      window: 5\n"
+            "   enabled: true\n   label: front\n   shade: dark\n   width: 1.5000000000000000e+00\n"
+            "   dots: 0\n   inner:\n      window: 5\n"
             "      every: 0\n");
 }
 
@@ -82,6 +87,8 @@ TEST(ParamFields, ReadsWhatItWroteAndKeepsAbsentKeys) {
   in.enabled = false;
   in.label = "back side";
   in.shade = Shade::Light;
+  in.width = 0.75f;
+  in.dots = true;
   in.inner.window = 9;
   in.inner.every = 3;
   Box out;
@@ -91,6 +98,8 @@ TEST(ParamFields, ReadsWhatItWroteAndKeepsAbsentKeys) {
   EXPECT_FALSE(out.enabled);
   EXPECT_EQ(out.label, "back side");
   EXPECT_EQ(out.shade, Shade::Light);
+  EXPECT_EQ(out.width, 0.75f);
+  EXPECT_TRUE(out.dots);
   EXPECT_EQ(out.inner.window, 9);
   EXPECT_EQ(out.inner.every, 3);
 
@@ -113,6 +122,9 @@ TEST(ParamFields, ChecksEachRuleNamingSectionAndKey) {
   EXPECT_EQ(readError("box: { ratio: 1.5 }\n"),
             "parameter 'box.ratio' must lie in [0.000000, 1.000000], got 1.500000");
   EXPECT_EQ(readError("box: { count: many }\n"), "parameter 'box.count' must be an integer");
+  EXPECT_EQ(readError("box: { width: 2.5 }\n"),
+            "parameter 'box.width' must lie in [0.500000, 2.000000], got 2.500000");
+  EXPECT_EQ(readError("box: { dots: 2 }\n"), "parameter 'box.dots' must be true or false");
   EXPECT_EQ(readError("box: { shade: grey }\n"),
             "parameter 'box.shade' must be 'light' or 'dark', got 'grey'");
   EXPECT_EQ(readError("box: { inner: { window: 4 } }\n"), "parameter 'inner.window' must be odd");
