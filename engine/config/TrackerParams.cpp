@@ -1,7 +1,6 @@
 #include "engine/config/TrackerParams.hpp"
 
 #include "engine/config/ParamFields.hpp"
-#include "engine/core/AtomicFile.hpp"
 #include "engine/core/Error.hpp"
 
 namespace reftrack {
@@ -44,12 +43,7 @@ TrackerParams TrackerParams::load(const std::filesystem::path& file) {
 
 void TrackerParams::save(const std::filesystem::path& file) const {
   check();
-  writeFileAtomically(file, [&](const std::filesystem::path& tmp) {
-    cv::FileStorage fs(tmp.string(), cv::FileStorage::WRITE | cv::FileStorage::FORMAT_YAML);
-    if (!fs.isOpened()) throw Error("cannot write parameter file '" + file.string() + "'");
-    write(fs);
-    fs.release();
-  });
+  writeParameterFile(file, [&](cv::FileStorage& fs) { write(fs); });
 }
 
 }  // namespace reftrack
