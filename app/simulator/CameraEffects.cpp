@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <sstream>
 
-#include "engine/config/ConfigValue.hpp"
+#include "engine/config/ParamFields.hpp"
 #include "engine/core/Error.hpp"
 
 namespace reftrack::app {
@@ -20,6 +20,14 @@ constexpr double kWebcamDefocusPx = 0.8;    // fixed-focus lens, circle of confu
 
 const std::vector<std::string> kCodecs = {"none", "h264", "mp4v", "mjpeg"};
 
+// The rule of effects.codec (ParamFields.hpp).
+struct KnownCodec {
+  void check(const std::string& name, const std::string& codec) const {
+    if (std::find(kCodecs.begin(), kCodecs.end(), codec) == kCodecs.end())
+      throw Error(name + " must be none, h264, mp4v or mjpeg, got '" + codec + "'");
+  }
+};
+
 }  // namespace
 
 bool CameraEffects::any() const {
@@ -27,54 +35,25 @@ bool CameraEffects::any() const {
          vignetting > 0.0 || poissonNoise || defocusRadiusPx > 0.0 || codec != "none";
 }
 
-void CameraEffects::check() const {
-  requireFiniteInRange("effects.exposure_ms", exposureMs, 0.0, 1000.0);
-  requireFiniteInRange("effects.readout_ms", readoutMs, 0.0, 1000.0);
-  requireIntInRange("effects.time_samples", timeSamples, 0, 64);
-  requireFiniteInRange("effects.gain_step", gainStep, 0.0, 0.9);
-  requireFiniteInRange("effects.gain_step_seconds", gainStepSeconds, 0.01, 3600.0);
-  requireFiniteInRange("effects.flicker_amplitude", flickerAmplitude, 0.0, 1.0);
-  requireFiniteInRange("effects.flicker_hz", flickerHz, 0.1, 10000.0);
-  requireFiniteInRange("effects.vignetting", vignetting, 0.0, 1.0);
-  requireFiniteInRange("effects.conversion_gain", conversionGain, 0.0, 100.0);
-  requireFiniteInRange("effects.read_noise", readNoise, 0.0, 100.0);
-  requireFiniteInRange("effects.defocus_radius_px", defocusRadiusPx, 0.0, 50.0);
-  if (std::find(kCodecs.begin(), kCodecs.end(), codec) == kCodecs.end())
-    throw Error("effects.codec must be none, h264, mp4v or mjpeg, got '" + codec + "'");
-  requireIntInRange("effects.jpeg_quality", jpegQuality, 1, 100);
-  requireIntInRange("effects.group_frames", groupFrames, 1, 10000);
-}
-
-void CameraEffects::write(cv::FileStorage& fs) const {
-  fs << "photos" << (photos ? "true" : "false") << "photo_file" << photoFile << "exposure_ms"
-     << exposureMs << "readout_ms" << readoutMs << "time_samples" << timeSamples << "gain_step"
-     << gainStep << "gain_step_seconds" << gainStepSeconds << "flicker_amplitude"
-     << flickerAmplitude << "flicker_hz" << flickerHz << "vignetting" << vignetting
-     << "poisson_noise" << (poissonNoise ? "true" : "false") << "conversion_gain" << conversionGain
-     << "read_noise" << readNoise << "defocus_radius_px" << defocusRadiusPx << "codec" << codec
-     << "jpeg_quality" << jpegQuality << "group_frames" << groupFrames;
-}
-
-void CameraEffects::read(const cv::FileNode& node) {
-  const std::string s = "effects";
-  readConfigValue(node, s, "photos", photos);
-  readConfigValue(node, s, "photo_file", photoFile);
-  readConfigValue(node, s, "exposure_ms", exposureMs);
-  readConfigValue(node, s, "readout_ms", readoutMs);
-  readConfigValue(node, s, "time_samples", timeSamples);
-  readConfigValue(node, s, "gain_step", gainStep);
-  readConfigValue(node, s, "gain_step_seconds", gainStepSeconds);
-  readConfigValue(node, s, "flicker_amplitude", flickerAmplitude);
-  readConfigValue(node, s, "flicker_hz", flickerHz);
-  readConfigValue(node, s, "vignetting", vignetting);
-  readConfigValue(node, s, "poisson_noise", poissonNoise);
-  readConfigValue(node, s, "conversion_gain", conversionGain);
-  readConfigValue(node, s, "read_noise", readNoise);
-  readConfigValue(node, s, "defocus_radius_px", defocusRadiusPx);
-  readConfigValue(node, s, "codec", codec);
-  readConfigValue(node, s, "jpeg_quality", jpegQuality);
-  readConfigValue(node, s, "group_frames", groupFrames);
-  check();
+template <class Self, class Field>
+void CameraEffects::fields(Self& p, const Field& field) {
+  field("photos", p.photos);
+  field("photo_file", p.photoFile);
+  field("exposure_ms", p.exposureMs, Range{0.0, 1000.0});
+  field("readout_ms", p.readoutMs, Range{0.0, 1000.0});
+  field("time_samples", p.timeSamples, Range{0, 64});
+  field("gain_step", p.gainStep, Range{0.0, 0.9});
+  field("gain_step_seconds", p.gainStepSeconds, Range{0.01, 3600.0});
+  field("flicker_amplitude", p.flickerAmplitude, Range{0.0, 1.0});
+  field("flicker_hz", p.flickerHz, Range{0.1, 10000.0});
+  field("vignetting", p.vignetting, Range{0.0, 1.0});
+  field("poisson_noise", p.poissonNoise);
+  field("conversion_gain", p.conversionGain, Range{0.0, 100.0});
+  field("read_noise", p.readNoise, Range{0.0, 100.0});
+  field("defocus_radius_px", p.defocusRadiusPx, Range{0.0, 50.0});
+  field("codec", p.codec, KnownCodec{});
+  field("jpeg_quality", p.jpegQuality, Range{1, 100});
+  field("group_frames", p.groupFrames, Range{1, 10000});
 }
 
 std::string CameraEffects::key() const {
@@ -140,3 +119,5 @@ CameraEffects cameraEffectsFor(const std::string& list, cv::Size size) {
 }
 
 }  // namespace reftrack::app
+
+template struct reftrack::ParamSection<reftrack::app::CameraEffects>;

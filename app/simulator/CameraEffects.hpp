@@ -10,9 +10,13 @@
 #include <string>
 #include <vector>
 
+#include "engine/config/ParamSection.hpp"
+
 namespace reftrack::app {
 
-struct CameraEffects {
+struct CameraEffects : ParamSection<CameraEffects> {
+  static constexpr const char* kSection = "effects";
+
   bool photos = false;            // photo prints on the desk (assets/textures/, see their README)
   std::string photoFile;          // "" = the bundled photograph
   double exposureMs = 0.0;        // motion blur: each row integrates the path over this exposure
@@ -32,11 +36,10 @@ struct CameraEffects {
   int groupFrames = 30;           // h264 / mp4v: frames encoded together (one key frame each)
 
   bool motionDependent() const { return exposureMs > 0.0 || readoutMs > 0.0; }
-  bool any() const;    // true when at least one effect is on
-  void check() const;  // throws reftrack::Error naming the bad field
-  void write(cv::FileStorage& fs) const;
-  void read(const cv::FileNode& node);  // missing keys keep their value
-  std::string key() const;              // a short text naming every non-default value (cache key)
+  bool any() const;                   // true when at least one effect is on
+  template <class Self, class Field>  // its keys, in order: ParamFields.hpp
+  static void fields(Self& self, const Field& field);
+  std::string key() const;  // a short text naming every non-default value (cache key)
 };
 
 // The effect names `--effects` accepts, each switching on one effect at its webcam level:
@@ -49,3 +52,6 @@ const std::vector<std::string>& cameraEffectNames();
 CameraEffects cameraEffectsFor(const std::string& list, cv::Size size);
 
 }  // namespace reftrack::app
+
+// Defined in CameraEffects.cpp.
+extern template struct reftrack::ParamSection<reftrack::app::CameraEffects>;

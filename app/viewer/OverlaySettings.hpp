@@ -6,9 +6,13 @@
 #include <opencv2/core.hpp>
 #include <string>
 
+#include "engine/config/ParamSection.hpp"
+
 namespace reftrack::app {
 
-struct OverlaySettings {
+struct OverlaySettings : ParamSection<OverlaySettings> {
+  static constexpr const char* kSection = "overlay";
+
   double size = 0.1;  // metres: cube edge, or the scale of one model unit
   // The object's base centre in the world frame (the cube stands on it: its centre is size/2
   // above, along world +z, out of the desk).
@@ -23,9 +27,13 @@ struct OverlaySettings {
 
   // The cube's model->world transform (centre at offset + size/2 along +z).
   Eigen::Matrix4d cubeModelToWorld() const;
-  void check() const;                     // throws reftrack::Error naming the bad field
-  void write(cv::FileStorage& fs) const;  // key/value pairs into the currently open map
-  void read(const cv::FileNode& node);    // missing keys keep their value; then check()
+  template <class Self, class Field>  // its keys, in order: ParamFields.hpp
+  static void fields(Self& self, const Field& field);
+  // As ParamSection's, but an absent section is left alone and one that is not a map refused.
+  void read(const cv::FileNode& node);
 };
 
 }  // namespace reftrack::app
+
+// Defined in OverlaySettings.cpp.
+extern template struct reftrack::ParamSection<reftrack::app::OverlaySettings>;

@@ -1,8 +1,6 @@
 #include "app/viewer/ViewerSettings.hpp"
 
-#include "engine/config/ConfigValue.hpp"
-#include "engine/core/AtomicFile.hpp"
-#include "engine/core/Error.hpp"
+#include "engine/config/ParamFields.hpp"
 
 namespace reftrack::app {
 
@@ -20,15 +18,9 @@ ViewerSettings ViewerSettings::load(const std::filesystem::path& file) {
 
 void ViewerSettings::save(const std::filesystem::path& file) const {
   check();
-  writeFileAtomically(file, [&](const std::filesystem::path& tmp) {
-    cv::FileStorage fs(tmp.string(), cv::FileStorage::WRITE | cv::FileStorage::FORMAT_YAML);
-    if (!fs.isOpened()) throw Error("cannot write parameter file '" + file.string() + "'");
+  writeParameterFile(file, [&](cv::FileStorage& fs) {
     tracker.write(fs);
-    fs << "overlay"
-       << "{";
-    overlay.write(fs);
-    fs << "}";
-    fs.release();
+    FieldWriter{fs}(overlay);  // its own section
   });
 }
 

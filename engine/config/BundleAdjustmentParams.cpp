@@ -1,36 +1,31 @@
 #include "engine/config/BundleAdjustmentParams.hpp"
 
-#include "engine/config/ConfigValue.hpp"
-#include "engine/config/KnownKeys.hpp"
+#include "engine/config/ParamFields.hpp"
 #include "engine/core/Error.hpp"
 
 namespace reftrack {
 
-void BundleAdjustmentParams::check() const {
-  if (loss != "huber" && loss != "cauchy" && loss != "none")
-    throw Error("parameter 'bundle_adjustment.loss' must be cauchy, huber or none, got '" + loss +
-                "'");
-  requireFiniteInRange("bundle_adjustment.loss_scale_px", lossScalePx, 1e-3, 1000.0);
-  requireFiniteInRange("bundle_adjustment.outlier_threshold_px", outlierThresholdPx, 1e-3, 1000.0);
-  requireIntInRange("bundle_adjustment.max_iterations", maxIterations, 1, 100000);
-  requireIntInRange("bundle_adjustment.min_determined_points", minDeterminedPoints, 3, 1000000);
+namespace {
+
+// The rule of bundle_adjustment.loss (ParamFields.hpp).
+struct KnownLoss {
+  void check(const std::string& name, const std::string& loss) const {
+    if (loss != "huber" && loss != "cauchy" && loss != "none")
+      throw Error("parameter '" + name + "' must be cauchy, huber or none, got '" + loss + "'");
+  }
+};
+
+}  // namespace
+
+template <class Self, class Field>
+void BundleAdjustmentParams::fields(Self& p, const Field& field) {
+  field("loss", p.loss, KnownLoss{});
+  field("loss_scale_px", p.lossScalePx, Range{1e-3, 1000.0});
+  field("outlier_threshold_px", p.outlierThresholdPx, Range{1e-3, 1000.0});
+  field("max_iterations", p.maxIterations, Range{1, 100000});
+  field("min_determined_points", p.minDeterminedPoints, Range{3, 1000000});
 }
 
-void BundleAdjustmentParams::write(cv::FileStorage& fs) const {
-  fs << "loss" << loss << "loss_scale_px" << lossScalePx << "outlier_threshold_px"
-     << outlierThresholdPx << "max_iterations" << maxIterations << "min_determined_points"
-     << minDeterminedPoints;
-}
-
-void BundleAdjustmentParams::read(const cv::FileNode& node) {
-  const std::string s = "bundle_adjustment";
-  requireKeysWrittenBy(node, s, [](cv::FileStorage& fs) { BundleAdjustmentParams{}.write(fs); });
-  readConfigValue(node, s, "loss", loss);
-  readConfigValue(node, s, "loss_scale_px", lossScalePx);
-  readConfigValue(node, s, "outlier_threshold_px", outlierThresholdPx);
-  readConfigValue(node, s, "max_iterations", maxIterations);
-  readConfigValue(node, s, "min_determined_points", minDeterminedPoints);
-  check();
-}
+template struct ParamSection<BundleAdjustmentParams>;
 
 }  // namespace reftrack

@@ -5,9 +5,13 @@
 #include <opencv2/core.hpp>
 #include <string>
 
+#include "engine/config/ParamSection.hpp"
+
 namespace reftrack {
 
-struct BundleAdjustmentParams {
+struct BundleAdjustmentParams : ParamSection<BundleAdjustmentParams> {
+  static constexpr const char* kSection = "bundle_adjustment";
+
   // Robust loss on each observation's reprojection error (pixels): cauchy | huber | none (plain
   // least squares, for comparison). Both keep the quadratic cost of good (sub-pixel) corners up to
   // lossScalePx; beyond it Cauchy's pull fades away while Huber's stays constant. Measured on the
@@ -26,9 +30,10 @@ struct BundleAdjustmentParams {
   // Otherwise its pose (and scale) would float, and it is held where it is.
   int minDeterminedPoints = 8;
 
-  void check() const;  // throws reftrack::Error naming the bad field (bundle_adjustment.key)
-  void write(cv::FileStorage& fs) const;
-  void read(const cv::FileNode& node);  // missing keys keep their value; then check()
+  template <class Self, class Field>  // its keys, in order: ParamFields.hpp
+  static void fields(Self& self, const Field& field);
 };
+extern template struct ParamSection<BundleAdjustmentParams>;  // defined in
+                                                              // BundleAdjustmentParams.cpp
 
 }  // namespace reftrack

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "engine/config/ConfigFile.hpp"
+#include "engine/core/AtomicFile.hpp"
 #include "engine/core/Error.hpp"
 
 namespace reftrack {
@@ -103,6 +104,16 @@ void readParameterFile(const std::filesystem::path& file,
   } catch (const cv::Exception& e) {
     throw Error(where + " has a malformed entry: " + e.err);
   }
+}
+
+void writeParameterFile(const std::filesystem::path& file,
+                        const std::function<void(cv::FileStorage& fs)>& write) {
+  writeFileAtomically(file, [&](const std::filesystem::path& tmp) {
+    cv::FileStorage fs(tmp.string(), cv::FileStorage::WRITE | cv::FileStorage::FORMAT_YAML);
+    if (!fs.isOpened()) throw Error("cannot write parameter file '" + file.string() + "'");
+    write(fs);
+    fs.release();
+  });
 }
 
 }  // namespace reftrack

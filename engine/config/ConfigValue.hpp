@@ -23,6 +23,9 @@ void readConfigValue(const cv::FileNode& section, const std::string& sectionName
 // reftrack::Error naming the file.
 void readParameterFile(const std::filesystem::path& file,
                        const std::function<void(const cv::FileNode& root)>& read);
+// Writes a YAML parameter file atomically (temp file + rename): `write` fills its root map.
+void writeParameterFile(const std::filesystem::path& file,
+                        const std::function<void(cv::FileStorage& fs)>& write);
 
 // Throws reftrack::Error "<field> must be ..." unless value is finite and within [lo, hi].
 void requireFiniteInRange(const std::string& field, double value, double lo, double hi);

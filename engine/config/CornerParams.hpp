@@ -3,9 +3,13 @@
 // Distances and counts are given at 320x240 and scale with the image (ResolutionScale.hpp).
 #include <opencv2/core.hpp>
 
+#include "engine/config/ParamSection.hpp"
+
 namespace reftrack {
 
-struct CornerParams {
+struct CornerParams : ParamSection<CornerParams> {
+  static constexpr const char* kSection = "corners";
+
   int countAt320x240 = 55;     // paper: 50-60 corners per 320x240 image
   double quality = 0.01;       // minimum Harris response relative to the strongest one
   double minDistancePx = 8.0;  // non-maximum suppression radius at 320x240
@@ -23,9 +27,9 @@ struct CornerParams {
   int countFor(cv::Size imageSize) const;
   double minDistanceFor(cv::Size imageSize) const;
 
-  void check() const;                     // throws reftrack::Error naming the bad field
-  void write(cv::FileStorage& fs) const;  // key/value pairs into the currently open map
-  void read(const cv::FileNode& node);    // missing keys keep their value; then check()
+  template <class Self, class Field>  // its keys, in order: ParamFields.hpp
+  static void fields(Self& self, const Field& field);
 };
+extern template struct ParamSection<CornerParams>;  // defined in CornerParams.cpp
 
 }  // namespace reftrack

@@ -1,7 +1,6 @@
 #include "engine/config/HomographyTrackerParams.hpp"
 
-#include "engine/config/ConfigValue.hpp"
-#include "engine/config/KnownKeys.hpp"
+#include "engine/config/ParamFields.hpp"
 #include "engine/core/Error.hpp"
 
 namespace reftrack {
@@ -28,63 +27,27 @@ KeypointLayer parseKeypointLayer(const std::string& name) {
               name + "'");
 }
 
-void HomographyTrackerParams::check() const {
-  requireFiniteInRange("homography.guided_search_half_size_px", guidedSearchHalfSizePx, 0.5,
-                       10000.0);
-  requireFiniteInRange("homography.reacquire_corner_factor", reacquireCornerFactor, 1.0, 16.0);
-  requireFiniteInRange("homography.reacquire_corner_quality", reacquireCornerQuality, 1e-6, 1.0);
-  requireFiniteInRange("homography.reacquire_min_distance_px", reacquireMinDistancePx, 1.0, 1000.0);
-  requireFiniteInRange("homography.frame_corner_factor", frameCornerFactor, 1.0, 16.0);
-  requireIntInRange("homography.keypoint_features", keypointFeatures, 8, 100000);
-  requireFiniteInRange("homography.keypoint_ratio", keypointRatio, 0.1, 1.0);
-  requireFiniteInRange("homography.keypoint_detect_scale", keypointDetectScale, 0.1, 1.0);
-  requireFiniteInRange("homography.keypoint_inlier_threshold_px", keypointInlierThresholdPx, 0.1,
-                       100.0);
-  requireFiniteInRange("homography.keypoint_search_half_size_px", keypointSearchHalfSizePx, 0.5,
-                       100.0);
-  if (refinePoints != 0) requireIntInRange("homography.refine_points", refinePoints, 8, 100000);
-  requireIntInRange("homography.keypoint_tilt_views", keypointTiltViews, 0, 16);
-  requireIntInRange("homography.keypoint_confident_inliers", keypointConfidentInliers, 4, 100000);
+template <class Self, class Field>
+void HomographyTrackerParams::fields(Self& p, const Field& field) {
+  field("guided_search_half_size_px", p.guidedSearchHalfSizePx, Range{0.5, 10000.0});
+  field("frame_to_frame_prediction", p.frameToFramePrediction);
+  field("reacquire_whole_image", p.reacquireWholeImage);
+  field("reacquire_corner_factor", p.reacquireCornerFactor, Range{1.0, 16.0});
+  field("reacquire_corner_quality", p.reacquireCornerQuality, Range{1e-6, 1.0});
+  field("reacquire_min_distance_px", p.reacquireMinDistancePx, Range{1.0, 1000.0});
+  field("frame_corner_factor", p.frameCornerFactor, Range{1.0, 16.0});
+  field("rotation_model", p.rotationModel);
+  field("keypoints", p.keypoints, TextForm<KeypointLayer>{keypointLayerName, parseKeypointLayer});
+  field("keypoint_features", p.keypointFeatures, Range{8, 100000});
+  field("keypoint_ratio", p.keypointRatio, Range{0.1, 1.0});
+  field("keypoint_detect_scale", p.keypointDetectScale, Range{0.1, 1.0});
+  field("keypoint_inlier_threshold_px", p.keypointInlierThresholdPx, Range{0.1, 100.0});
+  field("keypoint_search_half_size_px", p.keypointSearchHalfSizePx, Range{0.5, 100.0});
+  field("refine_points", p.refinePoints, OffOrRange{8, 100000});
+  field("keypoint_tilt_views", p.keypointTiltViews, Range{0, 16});
+  field("keypoint_confident_inliers", p.keypointConfidentInliers, Range{4, 100000});
 }
 
-void HomographyTrackerParams::write(cv::FileStorage& fs) const {
-  fs << "guided_search_half_size_px" << guidedSearchHalfSizePx << "frame_to_frame_prediction"
-     << (frameToFramePrediction ? "true" : "false") << "reacquire_whole_image"
-     << (reacquireWholeImage ? "true" : "false") << "reacquire_corner_factor"
-     << reacquireCornerFactor << "reacquire_corner_quality" << reacquireCornerQuality
-     << "reacquire_min_distance_px" << reacquireMinDistancePx << "frame_corner_factor"
-     << frameCornerFactor << "rotation_model" << (rotationModel ? "true" : "false") << "keypoints"
-     << keypointLayerName(keypoints) << "keypoint_features" << keypointFeatures << "keypoint_ratio"
-     << keypointRatio << "keypoint_detect_scale" << keypointDetectScale
-     << "keypoint_inlier_threshold_px" << keypointInlierThresholdPx
-     << "keypoint_search_half_size_px" << keypointSearchHalfSizePx << "refine_points"
-     << refinePoints << "keypoint_tilt_views" << keypointTiltViews << "keypoint_confident_inliers"
-     << keypointConfidentInliers;
-}
-
-void HomographyTrackerParams::read(const cv::FileNode& node) {
-  const std::string s = "homography";
-  requireKeysWrittenBy(node, s, [](cv::FileStorage& fs) { HomographyTrackerParams{}.write(fs); });
-  readConfigValue(node, s, "guided_search_half_size_px", guidedSearchHalfSizePx);
-  readConfigValue(node, s, "frame_to_frame_prediction", frameToFramePrediction);
-  readConfigValue(node, s, "reacquire_whole_image", reacquireWholeImage);
-  readConfigValue(node, s, "reacquire_corner_factor", reacquireCornerFactor);
-  readConfigValue(node, s, "reacquire_corner_quality", reacquireCornerQuality);
-  readConfigValue(node, s, "reacquire_min_distance_px", reacquireMinDistancePx);
-  readConfigValue(node, s, "frame_corner_factor", frameCornerFactor);
-  readConfigValue(node, s, "rotation_model", rotationModel);
-  std::string layer = keypointLayerName(keypoints);
-  readConfigValue(node, s, "keypoints", layer);
-  keypoints = parseKeypointLayer(layer);
-  readConfigValue(node, s, "keypoint_features", keypointFeatures);
-  readConfigValue(node, s, "keypoint_ratio", keypointRatio);
-  readConfigValue(node, s, "keypoint_detect_scale", keypointDetectScale);
-  readConfigValue(node, s, "keypoint_inlier_threshold_px", keypointInlierThresholdPx);
-  readConfigValue(node, s, "keypoint_search_half_size_px", keypointSearchHalfSizePx);
-  readConfigValue(node, s, "refine_points", refinePoints);
-  readConfigValue(node, s, "keypoint_tilt_views", keypointTiltViews);
-  readConfigValue(node, s, "keypoint_confident_inliers", keypointConfidentInliers);
-  check();
-}
+template struct ParamSection<HomographyTrackerParams>;
 
 }  // namespace reftrack

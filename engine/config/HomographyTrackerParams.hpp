@@ -4,6 +4,8 @@
 #include <opencv2/core.hpp>
 #include <string>
 
+#include "engine/config/ParamSection.hpp"
+
 namespace reftrack {
 
 // The viewpoint-invariant keypoint layer of cold registration (OpenCV features2d detectors).
@@ -12,7 +14,9 @@ std::string keypointLayerName(KeypointLayer layer);  // "none", "orb", "akaze", 
 // Parses those names; throws reftrack::Error listing them on anything else.
 KeypointLayer parseKeypointLayer(const std::string& name);
 
-struct HomographyTrackerParams {
+struct HomographyTrackerParams : ParamSection<HomographyTrackerParams> {
+  static constexpr const char* kSection = "homography";
+
   // Matches are searched within +-this of the predicted position (pixels at 320x240).
   double guidedSearchHalfSizePx = 8.0;
   // Predict with the frame-to-frame homography chained with the last frame-to-reference one
@@ -85,9 +89,10 @@ struct HomographyTrackerParams {
   int keypointTiltViews = 4;
   int keypointConfidentInliers = 20;
 
-  void check() const;
-  void write(cv::FileStorage& fs) const;
-  void read(const cv::FileNode& node);
+  template <class Self, class Field>  // its keys, in order: ParamFields.hpp
+  static void fields(Self& self, const Field& field);
 };
+extern template struct ParamSection<HomographyTrackerParams>;  // defined in
+                                                               // HomographyTrackerParams.cpp
 
 }  // namespace reftrack

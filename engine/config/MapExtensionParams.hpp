@@ -4,9 +4,13 @@
 // Support figures of the tracker are pixels at 320x240 (scaled with the image, as the tracker's).
 #include <opencv2/core.hpp>
 
+#include "engine/config/ParamSection.hpp"
+
 namespace reftrack {
 
-struct MapExtensionParams {
+struct MapExtensionParams : ParamSection<MapExtensionParams> {
+  static constexpr const char* kSection = "extension";
+
   // A tracked frame is covered when some reference's camera centre lies within
   // maxDistanceMetres of the frame's and its optical axis within maxAngleDeg of the frame's;
   // an uncovered frame becomes a new reference (when well supported, below). The simulator's
@@ -30,9 +34,9 @@ struct MapExtensionParams {
   int minNewPoints = 30;
   int maxReferences = 64;  // no more references are added beyond this many
 
-  void check() const;  // throws reftrack::Error naming the bad field (extension.key)
-  void write(cv::FileStorage& fs) const;
-  void read(const cv::FileNode& node);  // missing keys keep their value; then check()
+  template <class Self, class Field>  // its keys, in order: ParamFields.hpp
+  static void fields(Self& self, const Field& field);
 };
+extern template struct ParamSection<MapExtensionParams>;  // defined in MapExtensionParams.cpp
 
 }  // namespace reftrack

@@ -4,6 +4,8 @@
 #include <opencv2/core.hpp>
 #include <string>
 
+#include "engine/config/ParamSection.hpp"
+
 namespace reftrack {
 
 enum class PoseEstimatorKind { Standard, Regularised };
@@ -12,7 +14,9 @@ enum class PoseEstimatorKind { Standard, Regularised };
 std::string toString(PoseEstimatorKind kind);
 PoseEstimatorKind parsePoseEstimatorKind(const std::string& text);
 
-struct PoseParams {
+struct PoseParams : ParamSection<PoseParams> {
+  static constexpr const char* kSection = "pose";
+
   PoseEstimatorKind estimator = PoseEstimatorKind::Regularised;
   double alpha = 1.0;               // weight of the prior term in Eq. 13
   int arOrder = 1;                  // p of the AR(p) motion model
@@ -25,9 +29,9 @@ struct PoseParams {
   // exposed (the instant the pose stands for) before it enters the pose estimation.
   double rollingShutterReadout = 0.0;
 
-  void check() const;
-  void write(cv::FileStorage& fs) const;
-  void read(const cv::FileNode& node);
+  template <class Self, class Field>  // its keys, in order: ParamFields.hpp
+  static void fields(Self& self, const Field& field);
 };
+extern template struct ParamSection<PoseParams>;  // defined in PoseParams.cpp
 
 }  // namespace reftrack

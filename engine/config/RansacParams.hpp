@@ -3,9 +3,13 @@
 // and the inlier threshold are given at 320x240 and scale with the image.
 #include <opencv2/core.hpp>
 
+#include "engine/config/ParamSection.hpp"
+
 namespace reftrack {
 
-struct RansacParams {
+struct RansacParams : ParamSection<RansacParams> {
+  static constexpr const char* kSection = "ransac";
+
   int maxIterations = 70;             // sampling stops after this many iterations
   double earlyAcceptSupport = 0.75;   // accept at once when support exceeds this fraction
   int earlyAcceptMinIterations = 15;  // ... and at least this many iterations ran
@@ -20,9 +24,9 @@ struct RansacParams {
   // iteration cap is unchanged. false: uniform sampling as in the paper.
   bool progressiveSampling = true;
 
-  void check() const;
-  void write(cv::FileStorage& fs) const;
-  void read(const cv::FileNode& node);
+  template <class Self, class Field>  // its keys, in order: ParamFields.hpp
+  static void fields(Self& self, const Field& field);
 };
+extern template struct ParamSection<RansacParams>;  // defined in RansacParams.cpp
 
 }  // namespace reftrack

@@ -4,9 +4,13 @@
 // MultiReferenceTracker hands over between pairs and recovers (issue 13).
 #include <opencv2/core.hpp>
 
+#include "engine/config/ParamSection.hpp"
+
 namespace reftrack {
 
-struct ReferenceSelectionParams {
+struct ReferenceSelectionParams : ParamSection<ReferenceSelectionParams> {
+  static constexpr const char* kSection = "references";
+
   // A reference's cost for a camera pose: distance between the camera centres divided by the
   // scene depth (the references' median distance to their map points) plus angleWeight times the
   // angle between the viewing directions (radians). A pair costs the sum of its two references.
@@ -19,9 +23,10 @@ struct ReferenceSelectionParams {
   // camera has not gone far: a black or blurred frame), before relocalising.
   int reseedFrames = 30;
 
-  void check() const;  // throws reftrack::Error naming the bad field (references.key)
-  void write(cv::FileStorage& fs) const;
-  void read(const cv::FileNode& node);  // missing keys keep their value
+  template <class Self, class Field>  // its keys, in order: ParamFields.hpp
+  static void fields(Self& self, const Field& field);
 };
+extern template struct ParamSection<ReferenceSelectionParams>;  // defined in
+                                                                // ReferenceSelectionParams.cpp
 
 }  // namespace reftrack

@@ -3,13 +3,21 @@
 #include <algorithm>
 #include <cmath>
 
-#include "engine/config/ConfigValue.hpp"
-#include "engine/config/KnownKeys.hpp"
+#include "engine/config/ParamFields.hpp"
 #include "engine/core/Error.hpp"
 
 namespace reftrack {
 
 namespace {
+
+// The rule of relocalisation.keypoints (ParamFields.hpp).
+struct KnownKeypoints {
+  void check(const std::string& name, const std::string& keypoints) const {
+    if (keypoints != "orb" && keypoints != "akaze" && keypoints != "sift")
+      throw Error(name + " must be 'orb', 'akaze' or 'sift', got '" + keypoints + "'");
+  }
+};
+
 int scaledFrom640x480(int count, cv::Size size) {
   const double area = static_cast<double>(size.area()) / (640.0 * 480.0);
   return std::max(1, static_cast<int>(std::lround(count * area)));
@@ -24,62 +32,28 @@ int RelocalisationParams::featuresPerReferenceFor(cv::Size size) const {
   return scaledFrom640x480(featuresPerReference, size);
 }
 
-void RelocalisationParams::check() const {
-  if (keypoints != "orb" && keypoints != "akaze" && keypoints != "sift")
-    throw Error("relocalisation.keypoints must be 'orb', 'akaze' or 'sift', got '" + keypoints +
-                "'");
-  requireIntInRange("relocalisation.features_per_frame", featuresPerFrame, 50, 100000);
-  requireIntInRange("relocalisation.features_per_reference", featuresPerReference, 50, 100000);
-  requireIntInRange("relocalisation.reference_finer_levels", referenceFinerLevels, 0, 8);
-  requireIntInRange("relocalisation.frame_finer_levels", frameFinerLevels, 0, 8);
-  requireFiniteInRange("relocalisation.ratio", ratio, 0.1, 1.0);
-  requireIntInRange("relocalisation.references_to_match", referencesToMatch, 1, 10000);
-  requireIntInRange("relocalisation.ransac_iterations", ransacIterations, 1, 1000000);
-  requireFiniteInRange("relocalisation.reprojection_px", reprojectionPx, 0.1, 100.0);
-  requireIntInRange("relocalisation.min_inliers", minInliers, 6, 100000);
-  requireFiniteInRange("relocalisation.min_inlier_ratio", minInlierRatio, 0.0, 1.0);
-  requireIntInRange("relocalisation.attempt_every_frames", attemptEveryFrames, 1, 10000);
-  requireIntInRange("relocalisation.min_inlier_cells", minInlierCells, 1, 16);
-  requireFiniteInRange("relocalisation.max_rotation_sigma_deg", maxRotationSigmaDeg, 0.0, 180.0);
-  requireFiniteInRange("relocalisation.max_position_sigma_ratio", maxPositionSigmaRatio, 0.0, 10.0);
-  requireFiniteInRange("relocalisation.triangulation_px", triangulationPx, 0.05, 100.0);
-  requireFiniteInRange("relocalisation.min_parallax_deg", minParallaxDeg, 0.0, 90.0);
+template <class Self, class Field>
+void RelocalisationParams::fields(Self& p, const Field& field) {
+  field("enabled", p.enabled);
+  field("keypoints", p.keypoints, KnownKeypoints{});
+  field("features_per_frame", p.featuresPerFrame, Range{50, 100000});
+  field("features_per_reference", p.featuresPerReference, Range{50, 100000});
+  field("reference_finer_levels", p.referenceFinerLevels, Range{0, 8});
+  field("frame_finer_levels", p.frameFinerLevels, Range{0, 8});
+  field("ratio", p.ratio, Range{0.1, 1.0});
+  field("references_to_match", p.referencesToMatch, Range{1, 10000});
+  field("ransac_iterations", p.ransacIterations, Range{1, 1000000});
+  field("reprojection_px", p.reprojectionPx, Range{0.1, 100.0});
+  field("min_inliers", p.minInliers, Range{6, 100000});
+  field("min_inlier_ratio", p.minInlierRatio, Range{0.0, 1.0});
+  field("attempt_every_frames", p.attemptEveryFrames, Range{1, 10000});
+  field("min_inlier_cells", p.minInlierCells, Range{1, 16});
+  field("max_rotation_sigma_deg", p.maxRotationSigmaDeg, Range{0.0, 180.0});
+  field("max_position_sigma_ratio", p.maxPositionSigmaRatio, Range{0.0, 10.0});
+  field("triangulation_px", p.triangulationPx, Range{0.05, 100.0});
+  field("min_parallax_deg", p.minParallaxDeg, Range{0.0, 90.0});
 }
 
-void RelocalisationParams::write(cv::FileStorage& fs) const {
-  fs << "enabled" << (enabled ? "true" : "false") << "keypoints" << keypoints
-     << "features_per_frame" << featuresPerFrame << "features_per_reference" << featuresPerReference
-     << "reference_finer_levels" << referenceFinerLevels << "frame_finer_levels" << frameFinerLevels
-     << "ratio" << ratio << "references_to_match" << referencesToMatch << "ransac_iterations"
-     << ransacIterations << "reprojection_px" << reprojectionPx << "min_inliers" << minInliers
-     << "min_inlier_ratio" << minInlierRatio << "attempt_every_frames" << attemptEveryFrames
-     << "min_inlier_cells" << minInlierCells << "max_rotation_sigma_deg" << maxRotationSigmaDeg
-     << "max_position_sigma_ratio" << maxPositionSigmaRatio << "triangulation_px" << triangulationPx
-     << "min_parallax_deg" << minParallaxDeg;
-}
-
-void RelocalisationParams::read(const cv::FileNode& node) {
-  const std::string s = "relocalisation";
-  requireKeysWrittenBy(node, s, [](cv::FileStorage& fs) { RelocalisationParams{}.write(fs); });
-  readConfigValue(node, s, "enabled", enabled);
-  readConfigValue(node, s, "keypoints", keypoints);
-  readConfigValue(node, s, "features_per_frame", featuresPerFrame);
-  readConfigValue(node, s, "features_per_reference", featuresPerReference);
-  readConfigValue(node, s, "reference_finer_levels", referenceFinerLevels);
-  readConfigValue(node, s, "frame_finer_levels", frameFinerLevels);
-  readConfigValue(node, s, "ratio", ratio);
-  readConfigValue(node, s, "references_to_match", referencesToMatch);
-  readConfigValue(node, s, "ransac_iterations", ransacIterations);
-  readConfigValue(node, s, "reprojection_px", reprojectionPx);
-  readConfigValue(node, s, "min_inliers", minInliers);
-  readConfigValue(node, s, "min_inlier_ratio", minInlierRatio);
-  readConfigValue(node, s, "attempt_every_frames", attemptEveryFrames);
-  readConfigValue(node, s, "min_inlier_cells", minInlierCells);
-  readConfigValue(node, s, "max_rotation_sigma_deg", maxRotationSigmaDeg);
-  readConfigValue(node, s, "max_position_sigma_ratio", maxPositionSigmaRatio);
-  readConfigValue(node, s, "triangulation_px", triangulationPx);
-  readConfigValue(node, s, "min_parallax_deg", minParallaxDeg);
-  check();
-}
+template struct ParamSection<RelocalisationParams>;
 
 }  // namespace reftrack

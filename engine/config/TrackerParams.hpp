@@ -10,6 +10,7 @@
 #include "engine/config/CornerParams.hpp"
 #include "engine/config/CorrelationParams.hpp"
 #include "engine/config/HomographyTrackerParams.hpp"
+#include "engine/config/ParamSection.hpp"
 #include "engine/config/PoseParams.hpp"
 #include "engine/config/RansacParams.hpp"
 #include "engine/config/ReferenceSelectionParams.hpp"
@@ -24,7 +25,8 @@ enum class TrackingMode { SixDof, Homography };
 std::string toString(TrackingMode mode);
 TrackingMode parseTrackingMode(const std::string& text);
 
-struct TrackerParams {
+struct TrackerParams : ParamSection<TrackerParams> {
+  static constexpr const char* kSection = "";  // the file\'s root
   // Sections of the same file that other readers check (the viewer's `overlay`).
   inline static const std::vector<std::string> kOtherSections = {"overlay"};
 
@@ -38,13 +40,14 @@ struct TrackerParams {
   RelocalisationParams relocalisation;
   ReferenceSelectionParams references;
 
-  void check() const;
-  void write(cv::FileStorage& fs) const;  // all sections at the top level of fs
-  void read(const cv::FileNode& root);    // root: the top-level map
+  template <class Self, class Field>  // its keys, in order: ParamFields.hpp
+  static void fields(Self& self, const Field& field);
+  void read(const cv::FileNode& root);  // root: the top-level map
 
   // Throws reftrack::Error naming the file and the key at fault.
   static TrackerParams load(const std::filesystem::path& file);
   void save(const std::filesystem::path& file) const;  // atomic (temp file + rename)
 };
+extern template struct ParamSection<TrackerParams>;  // defined in TrackerParams.cpp
 
 }  // namespace reftrack

@@ -3,9 +3,13 @@
 // homography and local affine maps, scored by the warped correlation of Eq. 19 (paper Sec. 6.2).
 #include <opencv2/core.hpp>
 
+#include "engine/config/ParamSection.hpp"
+
 namespace reftrack {
 
-struct WideBaselineParams {
+struct WideBaselineParams : ParamSection<WideBaselineParams> {
+  static constexpr const char* kSection = "wide_baseline";
+
   int dx = 10;  // candidates within a (2dx+1) x (2dy+1) window around p'_A
   int dy = 10;
   int halfWindow = 5;        // n: the warped correlation compares (2n+1)^2 pixels
@@ -30,9 +34,9 @@ struct WideBaselineParams {
   // seed a few centimetres or degrees off (at 1 m and 640x480, 1 degree ~ 9 px).
   int seedSearchAt320x240 = 30;
 
-  void check() const;
-  void write(cv::FileStorage& fs) const;
-  void read(const cv::FileNode& node);
+  template <class Self, class Field>  // its keys, in order: ParamFields.hpp
+  static void fields(Self& self, const Field& field);
 };
+extern template struct ParamSection<WideBaselineParams>;  // defined in WideBaselineParams.cpp
 
 }  // namespace reftrack

@@ -5,8 +5,7 @@
 #include <opencv2/imgproc.hpp>
 #include <optional>
 
-#include "engine/config/ConfigValue.hpp"
-#include "engine/config/KnownKeys.hpp"
+#include "engine/config/ParamFields.hpp"
 #include "engine/core/Error.hpp"
 #include "engine/geometry/FundamentalMatrix.hpp"
 #include "engine/matching/NccCorrelation.hpp"
@@ -17,6 +16,16 @@ namespace reftrack {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+
+// The rule of matching.max_depth_m (ParamFields.hpp): in range and beyond matching.min_depth_m.
+struct DepthBeyond {
+  double minDepthMetres;
+  void check(const std::string& name, double maxDepthMetres) const {
+    Range{1e-6, 1e6}.check(name, maxDepthMetres);
+    if (maxDepthMetres <= minDepthMetres)
+      throw Error("parameter '" + name + "' must be larger than 'matching.min_depth_m'");
+  }
+};
 // Plane hypotheses within ~78 degrees of edge-on to the viewing ray are skipped.
 constexpr double kMinPlaneCosine = 0.2;
 
@@ -70,47 +79,22 @@ std::optional<Eigen::Vector2d> correlationPeakOffset(const NccPatches& patchesA,
 
 }  // namespace
 
-void EpipolarMatcherParams::check() const {
-  requireIntInRange("matching.half_window", halfWindow, 1, 32);
-  requireFiniteInRange("matching.min_score", minScore, -1.0, 1.0);
-  requireFiniteInRange("matching.min_score_margin", minScoreMargin, 0.0, 2.0);
-  requireFiniteInRange("matching.max_peak_offset_px", maxPeakOffsetPx, 0.0, 1000.0);
-  requireIntInRange("matching.slant_azimuths", slantAzimuths, 0, 64);
-  requireFiniteInRange("matching.slant_deg", slantDeg, 0.0, 85.0);
-  requireFiniteInRange("matching.max_epipolar_distance_px", maxEpipolarDistancePx, 1e-3, 1000.0);
-  requireFiniteInRange("matching.min_depth_m", minDepthMetres, 1e-6, 1e6);
-  requireFiniteInRange("matching.max_depth_m", maxDepthMetres, 1e-6, 1e6);
-  if (maxDepthMetres <= minDepthMetres)
-    throw Error("parameter 'matching.max_depth_m' must be larger than 'matching.min_depth_m'");
-  requireFiniteInRange("matching.min_parallax_deg", minParallaxDeg, 0.0, 90.0);
-  requireFiniteInRange("matching.max_reprojection_error_px", maxReprojectionErrorPx, 1e-3, 1000.0);
+template <class Self, class Field>
+void EpipolarMatcherParams::fields(Self& p, const Field& field) {
+  field("half_window", p.halfWindow, Range{1, 32});
+  field("min_score", p.minScore, Range{-1.0, 1.0});
+  field("min_score_margin", p.minScoreMargin, Range{0.0, 2.0});
+  field("max_peak_offset_px", p.maxPeakOffsetPx, Range{0.0, 1000.0});
+  field("slant_azimuths", p.slantAzimuths, Range{0, 64});
+  field("slant_deg", p.slantDeg, Range{0.0, 85.0});
+  field("max_epipolar_distance_px", p.maxEpipolarDistancePx, Range{1e-3, 1000.0});
+  field("min_depth_m", p.minDepthMetres, Range{1e-6, 1e6});
+  field("max_depth_m", p.maxDepthMetres, DepthBeyond{p.minDepthMetres});
+  field("min_parallax_deg", p.minParallaxDeg, Range{0.0, 90.0});
+  field("max_reprojection_error_px", p.maxReprojectionErrorPx, Range{1e-3, 1000.0});
 }
 
-void EpipolarMatcherParams::write(cv::FileStorage& fs) const {
-  fs << "half_window" << halfWindow << "min_score" << minScore << "min_score_margin"
-     << minScoreMargin << "max_peak_offset_px" << maxPeakOffsetPx << "slant_azimuths"
-     << slantAzimuths << "slant_deg" << slantDeg << "max_epipolar_distance_px"
-     << maxEpipolarDistancePx << "min_depth_m" << minDepthMetres << "max_depth_m" << maxDepthMetres
-     << "min_parallax_deg" << minParallaxDeg << "max_reprojection_error_px"
-     << maxReprojectionErrorPx;
-}
-
-void EpipolarMatcherParams::read(const cv::FileNode& node) {
-  const std::string s = "matching";
-  requireKeysWrittenBy(node, s, [](cv::FileStorage& fs) { EpipolarMatcherParams{}.write(fs); });
-  readConfigValue(node, s, "half_window", halfWindow);
-  readConfigValue(node, s, "min_score", minScore);
-  readConfigValue(node, s, "min_score_margin", minScoreMargin);
-  readConfigValue(node, s, "max_peak_offset_px", maxPeakOffsetPx);
-  readConfigValue(node, s, "slant_azimuths", slantAzimuths);
-  readConfigValue(node, s, "slant_deg", slantDeg);
-  readConfigValue(node, s, "max_epipolar_distance_px", maxEpipolarDistancePx);
-  readConfigValue(node, s, "min_depth_m", minDepthMetres);
-  readConfigValue(node, s, "max_depth_m", maxDepthMetres);
-  readConfigValue(node, s, "min_parallax_deg", minParallaxDeg);
-  readConfigValue(node, s, "max_reprojection_error_px", maxReprojectionErrorPx);
-  check();
-}
+template struct ParamSection<EpipolarMatcherParams>;
 
 EpipolarGuidedMatcher::EpipolarGuidedMatcher(PinholeCamera camera, const RigidPose& T_A,
                                              const RigidPose& T_B, Params params)

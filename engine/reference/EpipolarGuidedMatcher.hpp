@@ -15,13 +15,16 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
+#include "engine/config/ParamSection.hpp"
 #include "engine/geometry/PinholeCamera.hpp"
 #include "engine/geometry/RigidPose.hpp"
 #include "engine/reference/ReferenceMap.hpp"
 
 namespace reftrack {
 
-struct EpipolarMatcherParams {
+struct EpipolarMatcherParams : ParamSection<EpipolarMatcherParams> {
+  static constexpr const char* kSection = "matching";
+
   int halfWindow = 7;     // NCC windows are (2n+1)^2 pixels of the full image
   double minScore = 0.8;  // keep the best candidate only above this NCC
   // ... and only when it beats every other candidate of either corner by this much.
@@ -40,10 +43,10 @@ struct EpipolarMatcherParams {
   double minParallaxDeg = 1.0;          // angle between the two viewing rays
   double maxReprojectionErrorPx = 1.0;  // after Eq. 10, in either image
 
-  void check() const;                     // throws reftrack::Error naming the bad field
-  void write(cv::FileStorage& fs) const;  // key/value pairs into the currently open map
-  void read(const cv::FileNode& node);    // missing keys keep their value; then check()
+  template <class Self, class Field>  // its keys, in order: ParamFields.hpp
+  static void fields(Self& self, const Field& field);
 };
+extern template struct ParamSection<EpipolarMatcherParams>;  // EpipolarGuidedMatcher.cpp
 
 // What happened to the corners, for the `prepare` summary.
 struct EpipolarMatchStats {

@@ -6,9 +6,9 @@
 #include <set>
 #include <sstream>
 
-#include "engine/config/KnownKeys.hpp"
 #include "engine/core/AtomicFile.hpp"
 #include "engine/core/Error.hpp"
+#include "engine/reference/MapFileFields.hpp"
 
 namespace reftrack {
 
@@ -18,26 +18,6 @@ constexpr const char* kFormatName = "reftrack-reference-map";
 
 std::string viewName(std::size_t i) { return "views[" + std::to_string(i) + "]"; }
 std::string pointName(std::size_t i) { return "points[" + std::to_string(i) + "]"; }
-
-cv::Mat poseToMat(const RigidPose& T) {
-  cv::Mat m(4, 4, CV_64F);
-  const Eigen::Matrix4d M = T.matrix4();
-  for (int r = 0; r < 4; ++r)
-    for (int c = 0; c < 4; ++c) m.at<double>(r, c) = M(r, c);
-  return m;
-}
-
-// Corners as rows (x, y, rmsContrast).
-cv::Mat cornersToMat(const std::vector<ReferenceCorner>& cs) {
-  cv::Mat m(static_cast<int>(cs.size()), 3, CV_32F);
-  for (std::size_t i = 0; i < cs.size(); ++i) {
-    const int r = static_cast<int>(i);
-    m.at<float>(r, 0) = cs[i].pixel.x;
-    m.at<float>(r, 1) = cs[i].pixel.y;
-    m.at<float>(r, 2) = cs[i].rmsContrast;
-  }
-  return m;
-}
 
 // A file name that stays inside the map folder: no separators, no "." / "..", not map.yml.
 bool isPlainFileName(const std::string& name) {
@@ -130,9 +110,7 @@ void MultiReferenceMap::save(const std::filesystem::path& folder) const {
     cv::FileStorage fs(tmp.string(), cv::FileStorage::WRITE | cv::FileStorage::FORMAT_YAML);
     fs << "format" << kFormatName;
     fs << "version" << kFormatVersion;
-    fs << "image_width" << camera.imageSize().width << "image_height" << camera.imageSize().height;
-    fs << "camera_matrix" << cv::Mat(camera.Kcv());
-    fs << "distortion_coefficients" << cv::Mat(camera.distortion(), true);
+    writeMapCamera(fs, camera);
     fs << "pose_source" << poseSource;
     fs << "keypoint_kind" << keypointKind;
     fs << "views"
@@ -195,53 +173,23 @@ MultiReferenceMap MultiReferenceMap::load(const std::filesystem::path& folder) {
                 "; this reftrack reads versions " + std::to_string(ReferenceMap::kFormatVersion) +
                 " and " + std::to_string(kFormatVersion));
 
-  MultiReferenceMap map;
-  try {
+  const MapFieldReader read(where, folder);
+  return readCheckedMap<MultiReferenceMap>(where, [&](MultiReferenceMap& map) {
     const auto requireKnown = [&](const cv::FileNode& node, const std::string& path,
                                   const std::vector<std::string>& known) {
-      try {
-        requireKnownKeys(node, path, known);
-      } catch (const Error& e) {
-        throw Error(where + ": " + e.what());
-      }
+      read.requireKnown(node, path, known);
     };
     requireKnown(fs.root(), "",
                  {"format", "version", "image_width", "image_height", "camera_matrix",
                   "distortion_coefficients", "pose_source", "keypoint_kind", "views", "point_count",
                   "points", "observations", "preparation_params"});
     const auto need = [&](const cv::FileNode& parent, const std::string& key,
-                          const std::string& name) {
-      cv::FileNode n = parent[key];
-      if (n.empty()) throw Error(where + ": missing field '" + name + "' (truncated file?)");
-      return n;
-    };
+                          const std::string& name) { return read.need(parent, key, name); };
     const cv::FileNode root = fs.root();
     const auto readMat = [&](const cv::FileNode& parent, const std::string& key,
-                             const std::string& name, int rows, int cols) {
-      cv::Mat m;
-      need(parent, key, name) >> m;
-      if ((rows >= 0 && m.rows != rows) || (cols >= 0 && !m.empty() && m.cols != cols))
-        throw Error(where + ": field '" + name + "' has the wrong shape (" +
-                    std::to_string(m.rows) + "x" + std::to_string(m.cols) + ")");
-      return m;
-    };
-    cv::Mat K = readMat(root, "camera_matrix", "camera_matrix", 3, 3), D;
-    K.convertTo(K, CV_64F);
-    fs["distortion_coefficients"] >> D;
-    Eigen::Matrix3d Ke;
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) Ke(r, c) = K.at<double>(r, c);
-    std::vector<double> dist;
-    if (!D.empty()) {
-      D.convertTo(D, CV_64F);
-      D = D.reshape(1, 1);
-      dist.assign(D.ptr<double>(), D.ptr<double>() + D.cols);
-    }
-    map.camera =
-        PinholeCamera(Ke,
-                      cv::Size(static_cast<int>(need(root, "image_width", "image_width")),
-                               static_cast<int>(need(root, "image_height", "image_height"))),
-                      dist);
+                             const std::string& name, int rows,
+                             int cols) { return read.readMat(parent, key, name, rows, cols); };
+    map.camera = read.readCamera(root);
     map.poseSource = static_cast<std::string>(fs["pose_source"]);
     map.keypointKind = static_cast<std::string>(fs["keypoint_kind"]);
     map.preparationParams = static_cast<std::string>(fs["preparation_params"]);
@@ -255,24 +203,9 @@ MultiReferenceMap MultiReferenceMap::load(const std::filesystem::path& folder) {
       requireKnown(node, at, {"name", "T", "anchored", "corners", "keypoints"});
       ReferenceView view;
       view.name = static_cast<std::string>(need(node, "name", at + ".name"));
-      cv::Mat T = readMat(node, "T", at + ".T", 4, 4);
-      T.convertTo(T, CV_64F);
-      Eigen::Matrix4d M;
-      for (int r = 0; r < 4; ++r)
-        for (int c = 0; c < 4; ++c) M(r, c) = T.at<double>(r, c);
-      if (!M.allFinite()) throw Error(where + ": field '" + at + ".T' is not finite");
-      if ((M.row(3) - Eigen::RowVector4d(0, 0, 0, 1)).norm() > 1e-9 ||
-          (M.topLeftCorner<3, 3>() * M.topLeftCorner<3, 3>().transpose() -
-           Eigen::Matrix3d::Identity())
-                  .norm() > 1e-6)
-        throw Error(where + ": field '" + at + ".T' is not a rigid transform");
-      view.T = RigidPose::fromMatrix4(M);
+      view.T = read.readPose(node, "T", at + ".T");
       view.anchored = static_cast<int>(need(node, "anchored", at + ".anchored")) != 0;
-      cv::Mat corners = readMat(node, "corners", at + ".corners", -1, 3);
-      if (!corners.empty()) corners.convertTo(corners, CV_32F);
-      for (int i = 0; i < corners.rows; ++i)
-        view.corners.push_back(
-            {{corners.at<float>(i, 0), corners.at<float>(i, 1)}, corners.at<float>(i, 2)});
+      view.corners = read.readCorners(node, "corners", at + ".corners");
       try {
         view.keypoints = ReferenceKeypoints::read(node["keypoints"], at + ".keypoints");
       } catch (const Error& e) {
@@ -281,13 +214,7 @@ MultiReferenceMap MultiReferenceMap::load(const std::filesystem::path& folder) {
       if (!isPlainFileName(view.name))
         throw Error(where + ": field '" + at + ".name' ('" + view.name +
                     "') is not a plain image file name");
-      const std::filesystem::path image = folder / view.name;
-      if (!std::filesystem::exists(image))
-        throw Error(where + ": reference image '" + image.string() + "' (" + at +
-                    ".name) is missing");
-      view.image = cv::imread(image.string(), cv::IMREAD_UNCHANGED);
-      if (view.image.empty())
-        throw Error(where + ": reference image '" + image.string() + "' cannot be read");
+      view.image = read.readImage(view.name, at + ".name");
       map.views.push_back(std::move(view));
     }
 
@@ -309,15 +236,7 @@ MultiReferenceMap MultiReferenceMap::load(const std::filesystem::path& folder) {
       map.points[static_cast<std::size_t>(p)].observations.push_back(
           {obs.at<int>(r, 1), obs.at<int>(r, 2)});
     }
-  } catch (const cv::Exception& e) {
-    throw Error(where + " has a malformed field: " + e.err);
-  }
-  try {
-    map.check();
-  } catch (const Error& e) {
-    throw Error(where + ": " + e.what());
-  }
-  return map;
+  });
 }
 
 }  // namespace reftrack

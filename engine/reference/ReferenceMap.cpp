@@ -1,13 +1,12 @@
 #include "engine/reference/ReferenceMap.hpp"
 
-#include <cmath>
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
 #include "engine/config/ConfigFile.hpp"
-#include "engine/config/KnownKeys.hpp"
 #include "engine/core/AtomicFile.hpp"
 #include "engine/core/Error.hpp"
+#include "engine/reference/MapFileFields.hpp"
 
 namespace reftrack {
 
@@ -15,25 +14,6 @@ namespace {
 
 constexpr const char* kImageA = "reference_a.png";
 constexpr const char* kImageB = "reference_b.png";
-
-cv::Mat poseToMat(const RigidPose& T) {
-  cv::Mat m(4, 4, CV_64F);
-  const Eigen::Matrix4d M = T.matrix4();
-  for (int r = 0; r < 4; ++r)
-    for (int c = 0; c < 4; ++c) m.at<double>(r, c) = M(r, c);
-  return m;
-}
-
-void checkCorners(const std::vector<ReferenceCorner>& corners, const char* name, cv::Size size) {
-  for (size_t i = 0; i < corners.size(); ++i) {
-    const auto& c = corners[i];
-    if (!std::isfinite(c.pixel.x) || !std::isfinite(c.pixel.y) || !std::isfinite(c.rmsContrast))
-      throw Error(std::string(name) + "[" + std::to_string(i) + "] is not finite");
-    if (c.pixel.x < -0.5f || c.pixel.y < -0.5f || c.pixel.x > size.width - 0.5f ||
-        c.pixel.y > size.height - 0.5f)
-      throw Error(std::string(name) + "[" + std::to_string(i) + "] lies outside the image");
-  }
-}
 
 }  // namespace
 
@@ -85,22 +65,11 @@ void ReferenceMap::save(const std::filesystem::path& folder) const {
     fs << "format"
        << "reftrack-reference-map";
     fs << "version" << kFormatVersion;
-    fs << "image_width" << camera.imageSize().width << "image_height" << camera.imageSize().height;
-    fs << "camera_matrix" << cv::Mat(camera.Kcv());
-    fs << "distortion_coefficients" << cv::Mat(camera.distortion(), true);
+    writeMapCamera(fs, camera);
     fs << "T_A" << poseToMat(T_A) << "T_B" << poseToMat(T_B);
     fs << "reference_a" << kImageA << "reference_b" << kImageB;
     fs << "pose_source" << poseSource;
-    const auto cornerMat = [](const std::vector<ReferenceCorner>& cs) {
-      cv::Mat m(static_cast<int>(cs.size()), 3, CV_32F);
-      for (size_t i = 0; i < cs.size(); ++i) {
-        m.at<float>(static_cast<int>(i), 0) = cs[i].pixel.x;
-        m.at<float>(static_cast<int>(i), 1) = cs[i].pixel.y;
-        m.at<float>(static_cast<int>(i), 2) = cs[i].rmsContrast;
-      }
-      return m;
-    };
-    fs << "corners_a" << cornerMat(cornersA) << "corners_b" << cornerMat(cornersB);
+    fs << "corners_a" << cornersToMat(cornersA) << "corners_b" << cornersToMat(cornersB);
     cv::Mat idx(static_cast<int>(matches.size()), 2, CV_32S),
         pts(static_cast<int>(matches.size()), 3, CV_64F);
     for (size_t i = 0; i < matches.size(); ++i) {
@@ -119,74 +88,29 @@ ReferenceMap ReferenceMap::load(const std::filesystem::path& folder) {
   const std::filesystem::path file = folder / kFileName;
   const std::string where = "reference map '" + file.string() + "'";
   cv::FileStorage fs = openReferenceMapFile(file);
-  ReferenceMap map;
-  try {
-    try {
-      requireKnownKeys(
-          fs.root(), "",
-          {"format", "version", "image_width", "image_height", "camera_matrix",
-           "distortion_coefficients", "T_A", "T_B", "reference_a", "reference_b", "pose_source",
-           "corners_a", "corners_b", "matches", "points_a", "preparation_params"});
-    } catch (const Error& e) {
-      throw Error(where + ": " + e.what());
-    }
-    const auto need = [&](const char* key) {
-      cv::FileNode n = fs[key];
-      if (n.empty()) throw Error(where + ": missing field '" + key + "' (truncated file?)");
-      return n;
-    };
-    if (static_cast<std::string>(need("format")) != "reftrack-reference-map")
+  const MapFieldReader read(where, folder);
+  return readCheckedMap<ReferenceMap>(where, [&](ReferenceMap& map) {
+    const cv::FileNode root = fs.root();
+    read.requireKnown(
+        root, "",
+        {"format", "version", "image_width", "image_height", "camera_matrix",
+         "distortion_coefficients", "T_A", "T_B", "reference_a", "reference_b", "pose_source",
+         "corners_a", "corners_b", "matches", "points_a", "preparation_params"});
+    if (static_cast<std::string>(read.need(root, "format", "format")) != "reftrack-reference-map")
       throw Error(where + " is not a reftrack reference map");
-    const int version = static_cast<int>(need("version"));
+    const int version = static_cast<int>(read.need(root, "version", "version"));
     if (version != kFormatVersion)
       throw Error(where + " has format version " + std::to_string(version) +
                   "; this reftrack reads version " + std::to_string(kFormatVersion));
-    const auto readMat = [&](const char* key, int rows, int cols) {
-      cv::Mat m;
-      need(key) >> m;
-      if ((rows >= 0 && m.rows != rows) || (cols >= 0 && !m.empty() && m.cols != cols))
-        throw Error(where + ": field '" + key + "' has the wrong shape");
-      return m;
-    };
-    cv::Mat K = readMat("camera_matrix", 3, 3), D;
-    K.convertTo(K, CV_64F);
-    fs["distortion_coefficients"] >> D;
-    Eigen::Matrix3d Ke;
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) Ke(r, c) = K.at<double>(r, c);
-    std::vector<double> dist;
-    if (!D.empty()) {
-      D.convertTo(D, CV_64F);
-      D = D.reshape(1, 1);
-      dist.assign(D.ptr<double>(), D.ptr<double>() + D.cols);
-    }
-    map.camera = PinholeCamera(
-        Ke, cv::Size(static_cast<int>(need("image_width")), static_cast<int>(need("image_height"))),
-        dist);
-    const auto readPose = [&](const char* key) {
-      cv::Mat m = readMat(key, 4, 4);
-      m.convertTo(m, CV_64F);
-      Eigen::Matrix4d M;
-      for (int r = 0; r < 4; ++r)
-        for (int c = 0; c < 4; ++c) M(r, c) = m.at<double>(r, c);
-      if (!M.allFinite()) throw Error(where + ": field '" + key + "' is not finite");
-      return RigidPose::fromMatrix4(M);
-    };
-    map.T_A = readPose("T_A");
-    map.T_B = readPose("T_B");
+    map.camera = read.readCamera(root);
+    map.T_A = read.readPose(root, "T_A", "T_A");
+    map.T_B = read.readPose(root, "T_B", "T_B");
     map.poseSource = static_cast<std::string>(fs["pose_source"]);
     map.preparationParams = static_cast<std::string>(fs["preparation_params"]);
-    const auto readCorners = [&](const char* key) {
-      cv::Mat m = readMat(key, -1, 3);
-      std::vector<ReferenceCorner> cs(m.rows);
-      if (!m.empty()) m.convertTo(m, CV_32F);
-      for (int i = 0; i < m.rows; ++i)
-        cs[i] = {{m.at<float>(i, 0), m.at<float>(i, 1)}, m.at<float>(i, 2)};
-      return cs;
-    };
-    map.cornersA = readCorners("corners_a");
-    map.cornersB = readCorners("corners_b");
-    cv::Mat idx = readMat("matches", -1, 2), pts = readMat("points_a", -1, 3);
+    map.cornersA = read.readCorners(root, "corners_a", "corners_a");
+    map.cornersB = read.readCorners(root, "corners_b", "corners_b");
+    cv::Mat idx = read.readMat(root, "matches", "matches", -1, 2),
+            pts = read.readMat(root, "points_a", "points_a", -1, 3);
     if (idx.rows != pts.rows)
       throw Error(where + ": 'matches' and 'points_a' differ in length (truncated file?)");
     if (!pts.empty()) pts.convertTo(pts, CV_64F);
@@ -196,24 +120,11 @@ ReferenceMap ReferenceMap::load(const std::filesystem::path& folder) {
           {idx.at<int>(i, 0), idx.at<int>(i, 1),
            Eigen::Vector3d(pts.at<double>(i, 0), pts.at<double>(i, 1), pts.at<double>(i, 2))});
     const auto readImage = [&](const char* key) {
-      const std::filesystem::path p = folder / static_cast<std::string>(need(key));
-      if (!std::filesystem::exists(p))
-        throw Error(where + ": reference image '" + p.string() + "' is missing");
-      cv::Mat img = cv::imread(p.string(), cv::IMREAD_UNCHANGED);
-      if (img.empty()) throw Error(where + ": reference image '" + p.string() + "' cannot be read");
-      return img;
+      return read.readImage(static_cast<std::string>(read.need(root, key, key)), key);
     };
     map.imageA = readImage("reference_a");
     map.imageB = readImage("reference_b");
-  } catch (const cv::Exception& e) {
-    throw Error(where + " has a malformed field: " + e.err);
-  }
-  try {
-    map.check();
-  } catch (const Error& e) {
-    throw Error(where + ": " + e.what());
-  }
-  return map;
+  });
 }
 
 }  // namespace reftrack

@@ -49,7 +49,8 @@ struct EglSurfacelessContext::Impl {
   }
 };
 
-EglSurfacelessContext::EglSurfacelessContext() : impl_(std::make_unique<Impl>()) {
+EglSurfacelessContext::EglSurfacelessContext()
+    : GlContext("egl-surfaceless"), impl_(std::make_unique<Impl>()) {
   const char* clientExtensions = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
   for (const char* needed : {"EGL_EXT_platform_base", "EGL_MESA_platform_surfaceless"})
     if (!hasExtension(clientExtensions, needed))
@@ -95,8 +96,7 @@ EglSurfacelessContext::EglSurfacelessContext() : impl_(std::make_unique<Impl>())
   impl_->context = eglCreateContext(impl_->display, config, EGL_NO_CONTEXT, contextAttributes);
   if (impl_->context == EGL_NO_CONTEXT)
     throw Error("EGL could not create an OpenGL 3.3 core context (" + eglErrorText() + ")");
-  makeCurrent();
-  description_ = currentGlDescription();
+  makeCurrentAndDescribe();
 }
 
 EglSurfacelessContext::~EglSurfacelessContext() = default;

@@ -15,17 +15,12 @@ class EglSurfacelessContext final : public GlContext {
   // naming the missing EGL extension or failing call when the platform is unavailable.
   EglSurfacelessContext();
   ~EglSurfacelessContext() override;
-  EglSurfacelessContext(const EglSurfacelessContext&) = delete;
-  EglSurfacelessContext& operator=(const EglSurfacelessContext&) = delete;
 
   void makeCurrent() override;
-  std::string backendName() const override { return "egl-surfaceless"; }
-  std::string description() const override { return description_; }
 
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
-  std::string description_;
 };
 
 }  // namespace reftrack::render

@@ -4,6 +4,7 @@
 // current context; tracking code never sees which one runs.
 #include <memory>
 #include <string>
+#include <utility>
 
 #include "render/gl/GlLoader.hpp"
 
@@ -11,12 +12,27 @@ namespace reftrack::render {
 
 class GlContext {
  public:
+  GlContext(const GlContext&) = delete;
+  GlContext& operator=(const GlContext&) = delete;
   virtual ~GlContext() = default;
   virtual void makeCurrent() = 0;
   // "osmesa", "egl-surfaceless" or "glfw-window".
-  virtual std::string backendName() const = 0;
+  const std::string& backendName() const { return backendName_; }
   // GL_VERSION / GL_RENDERER of the context, known after creation.
-  virtual std::string description() const = 0;
+  const std::string& description() const { return description_; }
+
+ protected:
+  explicit GlContext(std::string backendName) : backendName_(std::move(backendName)) {}
+  // For the implementation's constructor, once its context exists: makes it current (loading
+  // the GL functions) and records its description.
+  void makeCurrentAndDescribe() {
+    makeCurrent();
+    description_ = currentGlDescription();
+  }
+
+ private:
+  std::string backendName_;
+  std::string description_;
 };
 
 enum class HeadlessBackend { Auto, OsMesa, EglSurfaceless };

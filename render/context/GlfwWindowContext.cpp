@@ -36,7 +36,7 @@ void WindowOptions::check() const {
                 std::to_string(size.height));
 }
 
-GlfwWindowContext::GlfwWindowContext(const WindowOptions& options) {
+GlfwWindowContext::GlfwWindowContext(const WindowOptions& options) : GlContext("glfw-window") {
   options.check();
   if (!environmentSet("DISPLAY") && !environmentSet("WAYLAND_DISPLAY"))
     throw Error(
@@ -59,9 +59,8 @@ GlfwWindowContext::GlfwWindowContext(const WindowOptions& options) {
     throw Error("GLFW could not open an OpenGL 3.3 core window: " + lastGlfwError);
   }
   try {
-    makeCurrent();
+    makeCurrentAndDescribe();
     glfwSwapInterval(options.vsync ? 1 : 0);
-    description_ = currentGlDescription();
   } catch (...) {
     glfwDestroyWindow(window_);
     if (--openWindows == 0) glfwTerminate();

@@ -24,12 +24,8 @@ class GlfwWindowContext final : public GlContext {
   // Opens the window, makes its context current and loads the GL functions.
   explicit GlfwWindowContext(const WindowOptions& options = {});
   ~GlfwWindowContext() override;
-  GlfwWindowContext(const GlfwWindowContext&) = delete;
-  GlfwWindowContext& operator=(const GlfwWindowContext&) = delete;
 
   void makeCurrent() override;
-  std::string backendName() const override { return "glfw-window"; }
-  std::string description() const override { return description_; }
 
   cv::Size framebufferSize() const;  // in pixels (differs from the window size on HiDPI)
   void swapBuffers();
@@ -40,7 +36,6 @@ class GlfwWindowContext final : public GlContext {
 
  private:
   GLFWwindow* window_ = nullptr;
-  std::string description_;
 };
 
 }  // namespace reftrack::render

@@ -22,7 +22,7 @@ struct OsMesaContext::Impl {
   std::vector<unsigned char> buffer = std::vector<unsigned char>(kBufferSide * kBufferSide * 4);
 };
 
-OsMesaContext::OsMesaContext() : impl_(std::make_unique<Impl>()) {
+OsMesaContext::OsMesaContext() : GlContext("osmesa"), impl_(std::make_unique<Impl>()) {
   const std::array<int, 13> attributes = {OSMESA_FORMAT,
                                           OSMESA_RGBA,
                                           OSMESA_DEPTH_BITS,
@@ -41,8 +41,7 @@ OsMesaContext::OsMesaContext() : impl_(std::make_unique<Impl>()) {
     throw Error(
         "OSMesa could not create an OpenGL 3.3 core context (libosmesa6 missing or too old)");
   try {
-    makeCurrent();
-    description_ = currentGlDescription();
+    makeCurrentAndDescribe();
   } catch (...) {
     OSMesaDestroyContext(impl_->context);
     throw;

@@ -14,17 +14,12 @@ class OsMesaContext final : public GlContext {
   // Creates the context, makes it current and loads the GL functions. Throws reftrack::Error.
   OsMesaContext();
   ~OsMesaContext() override;
-  OsMesaContext(const OsMesaContext&) = delete;
-  OsMesaContext& operator=(const OsMesaContext&) = delete;
 
   void makeCurrent() override;
-  std::string backendName() const override { return "osmesa"; }
-  std::string description() const override { return description_; }
 
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
-  std::string description_;
 };
 
 }  // namespace reftrack::render

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "ErrorMessage.hpp"
 #include "engine/core/Error.hpp"
 
 using namespace reftrack;
@@ -74,4 +75,12 @@ TEST(CameraEffects, RoundTripsThroughFileStorage) {
   EXPECT_EQ(back.key(), e.key());
   EXPECT_EQ(back.jpegQuality, 60);
   EXPECT_EQ(back.codec, "h264");
+}
+
+TEST(CameraEffects, ReadRefusesAnUnknownKeyNamingTheNearestKnownOne) {
+  cv::FileStorage in("%YAML:1.0\neffects: { vignette: 0.2 }\n",
+                     cv::FileStorage::READ | cv::FileStorage::MEMORY);
+  CameraEffects e;
+  EXPECT_EQ(test::errorMessage([&] { e.read(in["effects"]); }),
+            "effects.vignette: unknown key — did you mean effects.vignetting?");
 }

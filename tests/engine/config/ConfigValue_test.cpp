@@ -4,6 +4,7 @@
 
 #include <limits>
 
+#include "TestPaths.hpp"
 #include "engine/config/ParamsTestSupport.hpp"
 #include "engine/core/Error.hpp"
 
@@ -56,4 +57,18 @@ TEST(ConfigValue, RangeChecksRejectNanAndOutOfRange) {
             std::string::npos);
   EXPECT_NE(test::errorMessage([] { requireIntInRange("c.d", -1, 0, 1); }).find("'c.d'"),
             std::string::npos);
+}
+
+TEST(ConfigValue, WriteParameterFileIsReadBackAndRefusesAMissingFolder) {
+  const auto dir = test::freshTempDir("ConfigValue_WriteParameterFile");
+  writeParameterFile(dir / "p.yml", [](cv::FileStorage& fs) { fs << "answer" << 42; });
+  int answer = 0;
+  readParameterFile(dir / "p.yml",
+                    [&](const cv::FileNode& root) { readConfigValue(root, "", "answer", answer); });
+  EXPECT_EQ(answer, 42);
+  const auto missing = dir / "no-such-folder" / "p.yml";
+  // The atomic writer names the folder before the file could be opened.
+  EXPECT_EQ(test::errorMessage([&] { writeParameterFile(missing, [](cv::FileStorage&) {}); }),
+            "output folder '" + missing.parent_path().string() + "' does not exist");
+  EXPECT_FALSE(std::filesystem::exists(missing));
 }

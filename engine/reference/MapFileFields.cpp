@@ -1,0 +1,130 @@
+#include "engine/reference/MapFileFields.hpp"
+
+#include <cmath>
+#include <opencv2/imgcodecs.hpp>
+
+#include "engine/config/KnownKeys.hpp"
+
+namespace reftrack {
+
+void writeMapCamera(cv::FileStorage& fs, const PinholeCamera& camera) {
+  fs << "image_width" << camera.imageSize().width << "image_height" << camera.imageSize().height;
+  fs << "camera_matrix" << cv::Mat(camera.Kcv());
+  fs << "distortion_coefficients" << cv::Mat(camera.distortion(), true);
+}
+
+cv::Mat poseToMat(const RigidPose& T) {
+  cv::Mat m(4, 4, CV_64F);
+  const Eigen::Matrix4d M = T.matrix4();
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) m.at<double>(r, c) = M(r, c);
+  return m;
+}
+
+cv::Mat cornersToMat(const std::vector<ReferenceCorner>& corners) {
+  cv::Mat m(static_cast<int>(corners.size()), 3, CV_32F);
+  for (std::size_t i = 0; i < corners.size(); ++i) {
+    const int r = static_cast<int>(i);
+    m.at<float>(r, 0) = corners[i].pixel.x;
+    m.at<float>(r, 1) = corners[i].pixel.y;
+    m.at<float>(r, 2) = corners[i].rmsContrast;
+  }
+  return m;
+}
+
+void checkCorners(const std::vector<ReferenceCorner>& corners, const std::string& name,
+                  cv::Size imageSize) {
+  for (std::size_t i = 0; i < corners.size(); ++i) {
+    const ReferenceCorner& c = corners[i];
+    const std::string at = name + "[" + std::to_string(i) + "]";
+    if (!std::isfinite(c.pixel.x) || !std::isfinite(c.pixel.y) || !std::isfinite(c.rmsContrast))
+      throw Error(at + " is not finite");
+    if (c.pixel.x < -0.5f || c.pixel.y < -0.5f || c.pixel.x > imageSize.width - 0.5f ||
+        c.pixel.y > imageSize.height - 0.5f)
+      throw Error(at + " lies outside the image");
+  }
+}
+
+void MapFieldReader::requireKnown(const cv::FileNode& node, const std::string& path,
+                                  const std::vector<std::string>& known) const {
+  try {
+    requireKnownKeys(node, path, known);
+  } catch (const Error& e) {
+    throw Error(where_ + ": " + e.what());
+  }
+}
+
+cv::FileNode MapFieldReader::need(const cv::FileNode& parent, const std::string& key,
+                                  const std::string& name) const {
+  cv::FileNode n = parent[key];
+  if (n.empty()) throw Error(where_ + ": missing field '" + name + "' (truncated file?)");
+  return n;
+}
+
+cv::Mat MapFieldReader::readMat(const cv::FileNode& parent, const std::string& key,
+                                const std::string& name, int rows, int cols) const {
+  cv::Mat m;
+  need(parent, key, name) >> m;
+  if ((rows >= 0 && m.rows != rows) || (cols >= 0 && !m.empty() && m.cols != cols))
+    throw Error(where_ + ": field '" + name + "' has the wrong shape (" + std::to_string(m.rows) +
+                "x" + std::to_string(m.cols) + ")");
+  return m;
+}
+
+PinholeCamera MapFieldReader::readCamera(const cv::FileNode& root) const {
+  cv::Mat K = readMat(root, "camera_matrix", "camera_matrix", 3, 3), D;
+  K.convertTo(K, CV_64F);
+  root["distortion_coefficients"] >> D;
+  Eigen::Matrix3d Ke;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) Ke(r, c) = K.at<double>(r, c);
+  std::vector<double> distortion;
+  if (!D.empty()) {
+    D.convertTo(D, CV_64F);
+    D = D.reshape(1, 1);
+    distortion.assign(D.ptr<double>(), D.ptr<double>() + D.cols);
+  }
+  return PinholeCamera(Ke,
+                       cv::Size(static_cast<int>(need(root, "image_width", "image_width")),
+                                static_cast<int>(need(root, "image_height", "image_height"))),
+                       distortion);
+}
+
+RigidPose MapFieldReader::readPose(const cv::FileNode& parent, const std::string& key,
+                                   const std::string& name) const {
+  cv::Mat T = readMat(parent, key, name, 4, 4);
+  T.convertTo(T, CV_64F);
+  Eigen::Matrix4d M;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) M(r, c) = T.at<double>(r, c);
+  if (!M.allFinite()) throw Error(where_ + ": field '" + name + "' is not finite");
+  if ((M.row(3) - Eigen::RowVector4d(0, 0, 0, 1)).norm() > 1e-9 ||
+      (M.topLeftCorner<3, 3>() * M.topLeftCorner<3, 3>().transpose() - Eigen::Matrix3d::Identity())
+              .norm() > 1e-6)
+    throw Error(where_ + ": field '" + name + "' is not a rigid transform");
+  return RigidPose::fromMatrix4(M);
+}
+
+std::vector<ReferenceCorner> MapFieldReader::readCorners(const cv::FileNode& parent,
+                                                         const std::string& key,
+                                                         const std::string& name) const {
+  cv::Mat m = readMat(parent, key, name, -1, 3);
+  if (!m.empty()) m.convertTo(m, CV_32F);
+  std::vector<ReferenceCorner> corners(static_cast<std::size_t>(m.rows));
+  for (int i = 0; i < m.rows; ++i)
+    corners[static_cast<std::size_t>(i)] = {{m.at<float>(i, 0), m.at<float>(i, 1)},
+                                            m.at<float>(i, 2)};
+  return corners;
+}
+
+cv::Mat MapFieldReader::readImage(const std::string& fileName, const std::string& name) const {
+  const std::filesystem::path path = folder_ / fileName;
+  if (!std::filesystem::exists(path))
+    throw Error(where_ + ": reference image '" + path.string() + "' (" + name + ") is missing");
+  cv::Mat image = cv::imread(path.string(), cv::IMREAD_UNCHANGED);
+  if (image.empty())
+    throw Error(where_ + ": reference image '" + path.string() + "' cannot be read");
+  return image;
+}
+
+}  // namespace reftrack
