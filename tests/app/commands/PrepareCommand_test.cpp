@@ -340,7 +340,7 @@ TEST_F(PrepareCommandTest, SequenceReferencesNeedFramesAPoseSourceAndCoverage) {
   EXPECT_FALSE(fs::exists(scratch / "map"));
 }
 
-TEST_F(PrepareCommandTest, ThreeReferencesFromAFolderGiveAVersionTwoMap) {
+TEST_F(PrepareCommandTest, ThreeReferencesFromAFolderGiveAVersionThreeMap) {
   const fs::path scratch = test::freshTempDir("PrepareCommand_three");
   fs::create_directories(scratch / "refs");
   // Sorted by name: 0 = A, 1 = B, 2 = C, as the pose file lists them.
@@ -361,7 +361,7 @@ TEST_F(PrepareCommandTest, ThreeReferencesFromAFolderGiveAVersionTwoMap) {
   std::cout << run.out;
   for (const char* pair : {"pair 0-1", "pair 0-2", "pair 1-2"})
     EXPECT_NE(run.out.find(pair), std::string::npos) << pair;
-  EXPECT_NE(run.out.find("format version 2, 3 references"), std::string::npos);
+  EXPECT_NE(run.out.find("format version 3, 3 references"), std::string::npos);
   const MultiReferenceMap map = MultiReferenceMap::load(out);
   ASSERT_EQ(map.size(), 3);
   EXPECT_LT(RigidPose::translationDistance(map.views[2].T, *truthC_), 1e-9);
