@@ -56,7 +56,9 @@ struct ReferencePreparerParams {
   // Refine the given (marker / --poses) poses of references 1..N-1 from the map's own matches,
   // reference 0 and the scale held by the given poses (ReferencePoseRefiner), fitting the
   // correlation peaks the points were triangulated from (both the N- and the two-reference
-  // preparation). MEASUREMENTS: see README.
+  // preparation). Measured (README): real postcard clip, grid error mean 0.81 -> 0.61 px; 4 cm
+  // simulator pair, B 0.3 deg off, cube error 0.65 -> 0.12 px; exact poses: within 0.005 px of
+  // the mean and 0.02 px of the p95, depth RMS 2.93 -> 2.91 mm.
   bool refinePoses = true;
   ReferencePoseRefinerParams poseRefinement;
   // The keypoint layer an N-reference map carries for relocalisation (buildReferenceKeypoints;
