@@ -1,7 +1,7 @@
 // `reftrack prepare`: the offline preparation (paper Sec. 2, 3.3) for N >= 2 references — poses
 // from an ArUco marker (or from a TUM file of known poses), corners of every reference,
 // epipolar-guided matches and triangulation (Eq. 9, Eq. 10) per pair, merged into multi-view
-// points — written as a version-2 reference map folder.
+// points — written as a version-3 reference map folder.
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -238,7 +238,7 @@ CommandRegistration registerPrepareCommand(CLI::App& parent) {
       "(--marker) or from a TUM file with one camera-in-world pose per reference, in order\n"
       "(--poses; with --ref-a/--ref-b its first two entries). Every pair of references with\n"
       "overlap and parallax is matched and triangulated (one progress line per pair); the\n"
-      "matches merge into points seen by 2..N references. Writes OUT/map.yml (format version 2)\n"
+      "matches merge into points seen by 2..N references. Writes OUT/map.yml (format version 3)\n"
       "and OUT/reference_00.png, reference_01.png, ...\n"
       "From a recorded sequence: --input SRC --ref-frames I,J,... takes the references from\n"
       "SRC (e.g. tum:DIR or euroc:DIR) and --poses the ground truth at their timestamps\n"

@@ -238,7 +238,21 @@ EpipolarMatchResult EpipolarGuidedMatcher::match(const cv::Mat& grayA,
       ++stats.droppedPeakOffset;
       continue;
     }
-    const Eigen::Vector2d pB = uB[b] + *peak;
+    // The peak is measured on B's image grid (with lens distortion): it is undistorted as a
+    // pixel of its own (adding the offset to B's undistorted corner is the same only without
+    // distortion, where the sum is kept in double precision).
+    const cv::Point2f peakPixel(cornersB[b].x + static_cast<float>(peak->x()),
+                                cornersB[b].y + static_cast<float>(peak->y()));
+    if (peakPixel.x < -0.5f || peakPixel.y < -0.5f || peakPixel.x > grayB.cols - 0.5f ||
+        peakPixel.y > grayB.rows - 0.5f) {
+      ++stats.droppedPeakOffset;  // the peak left the image: no measurement to store
+      continue;
+    }
+    Eigen::Vector2d pB = uB[b] + *peak;
+    if (camera_.hasDistortion()) {
+      const cv::Point2f u = camera_.undistortPixels({peakPixel}).front();
+      pB = Eigen::Vector2d(u.x, u.y);
+    }
     const Eigen::Vector3d P = triangulator.refine(uA[a], pB, triangulator.linear(uA[a], pB));
     if (!P.allFinite() || P.z() <= 0.0 || (T_AB_ * P).z() <= 0.0) {
       ++stats.droppedBehindCamera;
@@ -259,7 +273,7 @@ EpipolarMatchResult EpipolarGuidedMatcher::match(const cv::Mat& grayA,
       continue;
     }
     squaredSum += eA * eA + eB * eB;
-    result.matches.push_back({a, b, P});
+    result.matches.push_back({a, b, P, std::nullopt, peakPixel});
     result.scores.push_back(bestScoreA[a]);
   }
   stats.kept = static_cast<int>(result.matches.size());

@@ -65,8 +65,10 @@ struct EpipolarMatchStats {
 };
 
 struct EpipolarMatchResult {
-  std::vector<ReferenceMatch> matches;  // kept matches, 3D point in camera A's frame
-  std::vector<float> scores;            // NCC of each kept match
+  // Kept matches, 3D point in camera A's frame; peakB: the correlation peak in B it was
+  // triangulated from (peakA none: A's corner).
+  std::vector<ReferenceMatch> matches;
+  std::vector<float> scores;  // NCC of each kept match
   EpipolarMatchStats stats;
 };
 

@@ -215,7 +215,7 @@ std::string MapExtender::addReference(const cv::Mat& frame, int frameIndex, cons
       if (oldPoint >= 0) {  // an existing point gains its corner in the new reference
         MapPoint& p = m.points[static_cast<std::size_t>(oldPoint)];
         if (observationIn(p, n) >= 0) continue;  // already has another corner there: conflict
-        p.observations.push_back({n, match.cornerB});
+        p.observations.push_back({n, match.cornerB, match.peakB});
         newPoint = oldPoint;
         ++added.pointsExtended;
       } else if (newPoint >= 0) {  // the new corner's point gains this old corner
@@ -224,7 +224,8 @@ std::string MapExtender::addReference(const cv::Mat& frame, int frameIndex, cons
         p.observations.push_back({j, match.cornerA});
         oldPoint = newPoint;
       } else {  // a new point
-        m.points.push_back({oldToWorld * match.pointA, {{j, match.cornerA}, {n, match.cornerB}}});
+        m.points.push_back({oldToWorld * match.pointA,
+                            {{j, match.cornerA, match.peakA}, {n, match.cornerB, match.peakB}}});
         oldPoint = newPoint = static_cast<int>(m.points.size()) - 1;
         ++added.pointsAdded;
       }

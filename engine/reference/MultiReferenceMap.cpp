@@ -1,4 +1,4 @@
-// MultiReferenceMap: check, save (format version 2) and load (versions 1 and 2).
+// MultiReferenceMap: check, save (format version 3) and load (versions 1, 2 and 3).
 #include "engine/reference/MultiReferenceMap.hpp"
 
 #include <cmath>
@@ -18,6 +18,10 @@ constexpr const char* kFormatName = "reftrack-reference-map";
 
 std::string viewName(std::size_t i) { return "views[" + std::to_string(i) + "]"; }
 std::string pointName(std::size_t i) { return "points[" + std::to_string(i) + "]"; }
+
+bool liesInside(cv::Point2f p, cv::Size size) {
+  return p.x >= -0.5f && p.y >= -0.5f && p.x <= size.width - 0.5f && p.y <= size.height - 0.5f;
+}
 
 // A file name that stays inside the map folder: no separators, no "." / "..", not map.yml.
 bool isPlainFileName(const std::string& name) {
@@ -57,9 +61,7 @@ void MultiReferenceMap::check() const {
       const std::string ci = at + ".corners[" + std::to_string(i) + "]";
       if (!std::isfinite(c.pixel.x) || !std::isfinite(c.pixel.y) || !std::isfinite(c.rmsContrast))
         throw Error(ci + " is not finite");
-      if (c.pixel.x < -0.5f || c.pixel.y < -0.5f || c.pixel.x > imageSize.width - 0.5f ||
-          c.pixel.y > imageSize.height - 0.5f)
-        throw Error(ci + " lies outside the image");
+      if (!liesInside(c.pixel, imageSize)) throw Error(ci + " lies outside the image");
     }
     view.keypoints.check(at + ".keypoints");
   }
@@ -89,6 +91,11 @@ void MultiReferenceMap::check() const {
                     std::to_string(corners.size()) + " corners)");
       if (!seen.insert(obs.view).second)
         throw Error(oi + ".view " + std::to_string(obs.view) + " appears twice in one point");
+      if (obs.peak) {
+        if (!std::isfinite(obs.peak->x) || !std::isfinite(obs.peak->y))
+          throw Error(oi + ".peak is not finite");
+        if (!liesInside(*obs.peak, imageSize)) throw Error(oi + ".peak lies outside the image");
+      }
       const Eigen::Vector3d inCamera = views[static_cast<std::size_t>(obs.view)].T * point.world;
       if (!(inCamera.z() > 0.0))
         throw Error(at + ".world lies behind the camera of " +
@@ -126,11 +133,13 @@ void MultiReferenceMap::save(const std::filesystem::path& folder) const {
       fs << "}";
     }
     fs << "]";
-    // points: world xyz per row; observations: (point, view, corner) per row, grouped by point.
+    // points: world xyz per row; observations: (point, view, corner) per row, grouped by point;
+    // observation_peaks: the measured pixel (x, y) of each observation row (measuredPixel).
     cv::Mat world(static_cast<int>(points.size()), 3, CV_64F);
     std::size_t observationCount = 0;
     for (const MapPoint& p : points) observationCount += p.observations.size();
     cv::Mat obs(static_cast<int>(observationCount), 3, CV_32S);
+    cv::Mat peaks(static_cast<int>(observationCount), 2, CV_32F);
     int row = 0;
     for (std::size_t p = 0; p < points.size(); ++p) {
       for (int k = 0; k < 3; ++k) world.at<double>(static_cast<int>(p), k) = points[p].world[k];
@@ -138,11 +147,14 @@ void MultiReferenceMap::save(const std::filesystem::path& folder) const {
         obs.at<int>(row, 0) = static_cast<int>(p);
         obs.at<int>(row, 1) = o.view;
         obs.at<int>(row, 2) = o.corner;
+        const cv::Point2f peak = measuredPixel(o);
+        peaks.at<float>(row, 0) = peak.x;
+        peaks.at<float>(row, 1) = peak.y;
         ++row;
       }
     }
     fs << "point_count" << static_cast<int>(points.size());
-    fs << "points" << world << "observations" << obs;
+    fs << "points" << world << "observations" << obs << "observation_peaks" << peaks;
     fs << "preparation_params" << preparationParams;
     fs.release();
   });
@@ -168,10 +180,15 @@ MultiReferenceMap MultiReferenceMap::load(const std::filesystem::path& folder) {
     fs.release();
     return fromPair(ReferenceMap::load(folder));
   }
-  if (version != kFormatVersion)
+  // Version 2 is version 3 without observation_peaks.
+  constexpr int kVersionWithoutPeaks = 2;
+  if (version != kFormatVersion && version != kVersionWithoutPeaks)
     throw Error(where + " has format version " + std::to_string(version) +
                 "; this reftrack reads versions " + std::to_string(ReferenceMap::kFormatVersion) +
-                " and " + std::to_string(kFormatVersion));
+                ", " + std::to_string(kVersionWithoutPeaks) + " and " +
+                std::to_string(kFormatVersion) +
+                (version > kFormatVersion ? " (written by a newer reftrack?)" : ""));
+  const bool hasPeaks = version >= kFormatVersion;
 
   const MapFieldReader read(where, folder);
   return readCheckedMap<MultiReferenceMap>(where, [&](MultiReferenceMap& map) {
@@ -179,10 +196,21 @@ MultiReferenceMap MultiReferenceMap::load(const std::filesystem::path& folder) {
                                   const std::vector<std::string>& known) {
       read.requireKnown(node, path, known);
     };
-    requireKnown(fs.root(), "",
-                 {"format", "version", "image_width", "image_height", "camera_matrix",
-                  "distortion_coefficients", "pose_source", "keypoint_kind", "views", "point_count",
-                  "points", "observations", "preparation_params"});
+    std::vector<std::string> rootKeys = {"format",
+                                         "version",
+                                         "image_width",
+                                         "image_height",
+                                         "camera_matrix",
+                                         "distortion_coefficients",
+                                         "pose_source",
+                                         "keypoint_kind",
+                                         "views",
+                                         "point_count",
+                                         "points",
+                                         "observations",
+                                         "preparation_params"};
+    if (hasPeaks) rootKeys.push_back("observation_peaks");
+    requireKnown(fs.root(), "", rootKeys);
     const auto need = [&](const cv::FileNode& parent, const std::string& key,
                           const std::string& name) { return read.need(parent, key, name); };
     const cv::FileNode root = fs.root();
@@ -224,6 +252,11 @@ MultiReferenceMap MultiReferenceMap::load(const std::filesystem::path& folder) {
     cv::Mat obs = readMat(root, "observations", "observations", -1, 3);
     if (!world.empty()) world.convertTo(world, CV_64F);
     if (!obs.empty()) obs.convertTo(obs, CV_32S);
+    cv::Mat peaks;
+    if (hasPeaks) {
+      peaks = readMat(root, "observation_peaks", "observation_peaks", obs.rows, 2);
+      if (!peaks.empty()) peaks.convertTo(peaks, CV_32F);
+    }
     map.points.resize(static_cast<std::size_t>(pointCount));
     for (int p = 0; p < pointCount; ++p)
       map.points[static_cast<std::size_t>(p)].world =
@@ -233,8 +266,9 @@ MultiReferenceMap MultiReferenceMap::load(const std::filesystem::path& folder) {
       if (p < 0 || p >= pointCount)
         throw Error(where + ": field 'observations' row " + std::to_string(r) + " names point " +
                     std::to_string(p) + " of " + std::to_string(pointCount));
-      map.points[static_cast<std::size_t>(p)].observations.push_back(
-          {obs.at<int>(r, 1), obs.at<int>(r, 2)});
+      PointObservation o{obs.at<int>(r, 1), obs.at<int>(r, 2)};
+      if (hasPeaks) o.peak = cv::Point2f(peaks.at<float>(r, 0), peaks.at<float>(r, 1));
+      map.points[static_cast<std::size_t>(p)].observations.push_back(o);
     }
   });
 }

@@ -3,11 +3,13 @@
 // poses and corners, the 3D points triangulated from every pair of references with overlap and
 // parallax (each point keeps its corner in every reference that sees it), and the keypoint layer
 // used for relocalisation. The 6-DOF tracker runs the paper's two-reference costs on one pair at a
-// time: pair(a, b) is that pair as a two-view ReferenceMap. On disk (format version 2): a folder
-// with map.yml and one image per reference; load() also reads version-1 (two-reference) maps.
+// time: pair(a, b) is that pair as a two-view ReferenceMap. On disk (format version 3): a folder
+// with map.yml and one image per reference; load() also reads version-2 maps (no peaks) and
+// version-1 (two-reference) maps.
 #include <Eigen/Core>
 #include <filesystem>
 #include <opencv2/core.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,6 +23,10 @@ namespace reftrack {
 struct PointObservation {
   int view = -1;    // index into MultiReferenceMap::views
   int corner = -1;  // index into that view's corners
+  // Where the point was measured in this view (pixels, with lens distortion): the sub-pixel
+  // correlation peak its triangulation used, up to matching.max_peak_offset_px from the corner
+  // (the corner itself in the view that anchored the match). None: the corner (format 1/2 maps).
+  std::optional<cv::Point2f> peak{};
 };
 
 struct MapPoint {
@@ -39,7 +45,7 @@ struct ReferenceView {
 
 class MultiReferenceMap {
  public:
-  static constexpr int kFormatVersion = 2;
+  static constexpr int kFormatVersion = 3;
   static constexpr const char* kFileName = "map.yml";
 
   PinholeCamera camera;
@@ -54,6 +60,9 @@ class MultiReferenceMap {
   // and one match per map point that both see (its 3D point in camera a's frame). Throws
   // reftrack::Error when a == b or either is out of range.
   ReferenceMap pair(int a, int b) const;
+  // The pixel (with lens distortion) observation `o` measured: its peak, or else its corner.
+  // `o` must name an existing view and corner (check()).
+  cv::Point2f measuredPixel(const PointObservation& o) const;
   // Number of map points seen by both a and b.
   int sharedPoints(int a, int b) const;
   // A two-reference map (version 1) as an N = 2 map: points from its matches, no keypoints.
@@ -64,7 +73,8 @@ class MultiReferenceMap {
   // Writes the images first and map.yml last, each atomically: an interrupted save never leaves
   // a loadable half map.
   void save(const std::filesystem::path& folder) const;
-  // Version 2, or version 1 through fromPair(); checks the version and every field.
+  // Version 3; version 2 (observations without peaks); version 1 through fromPair(). Checks the
+  // version and every field.
   static MultiReferenceMap load(const std::filesystem::path& folder);
 };
 

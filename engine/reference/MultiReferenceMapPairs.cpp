@@ -1,4 +1,5 @@
-// MultiReferenceMap: the pair view and the conversion from a two-reference map.
+// MultiReferenceMap: the pair view, the measured pixels and the conversion from a two-reference
+// map.
 #include <algorithm>
 #include <string>
 
@@ -9,10 +10,15 @@ namespace reftrack {
 
 namespace {
 
-int cornerIn(const MapPoint& p, int view) {
+const PointObservation* observationIn(const MapPoint& p, int view) {
   for (const PointObservation& o : p.observations)
-    if (o.view == view) return o.corner;
-  return -1;
+    if (o.view == view) return &o;
+  return nullptr;
+}
+
+int cornerIn(const MapPoint& p, int view) {
+  const PointObservation* o = observationIn(p, view);
+  return o ? o->corner : -1;
 }
 
 }  // namespace
@@ -35,11 +41,11 @@ ReferenceMap MultiReferenceMap::pair(int a, int b) const {
   m.poseSource = poseSource;
   m.preparationParams = preparationParams;
   for (const MapPoint& p : points) {
-    const int ca = cornerIn(p, a), cb = cornerIn(p, b);
-    if (ca < 0 || cb < 0) continue;
+    const PointObservation *oa = observationIn(p, a), *ob = observationIn(p, b);
+    if (!oa || !ob) continue;
     const Eigen::Vector3d inA = va.T * p.world;
     if (!(inA.z() > 0.0)) continue;
-    m.matches.push_back({ca, cb, inA});
+    m.matches.push_back({oa->corner, ob->corner, inA, oa->peak, ob->peak});
   }
   return m;
 }
@@ -60,8 +66,15 @@ MultiReferenceMap MultiReferenceMap::fromPair(const ReferenceMap& map) {
   m.views[1] = ReferenceView{"reference_b.png", map.T_B, true, map.imageB, map.cornersB, {}};
   const RigidPose AtoWorld = map.T_A.inverse();
   for (const ReferenceMatch& match : map.matches)
-    m.points.push_back(MapPoint{AtoWorld * match.pointA, {{0, match.cornerA}, {1, match.cornerB}}});
+    m.points.push_back(
+        MapPoint{AtoWorld * match.pointA,
+                 {{0, match.cornerA, match.peakA}, {1, match.cornerB, match.peakB}}});
   return m;
+}
+
+cv::Point2f MultiReferenceMap::measuredPixel(const PointObservation& o) const {
+  if (o.peak) return *o.peak;
+  return views[static_cast<std::size_t>(o.view)].corners[static_cast<std::size_t>(o.corner)].pixel;
 }
 
 }  // namespace reftrack

@@ -46,10 +46,12 @@ double viewAngleDeg(const RigidPose& a, const RigidPose& b) {
   return std::acos(std::clamp(za.dot(zb), -1.0, 1.0)) * 180.0 / std::numbers::pi;
 }
 
-// One kept pairwise match: its two nodes and its Eq. 9/10 point in the world frame.
+// One kept pairwise match: its two nodes, its Eq. 9/10 point in the world frame and the
+// correlation peak in B it was triangulated from (with A's corner).
 struct PairMatch {
   std::size_t nodeA, nodeB;
   Eigen::Vector3d world;
+  cv::Point2f peakB;
 };
 
 }  // namespace
@@ -177,7 +179,9 @@ MultiPreparation MultiReferencePreparer::build(const std::vector<ReferenceImage>
             pairMatches.push_back(
                 {firstNode[static_cast<std::size_t>(a)] + static_cast<std::size_t>(m.cornerA),
                  firstNode[static_cast<std::size_t>(b)] + static_cast<std::size_t>(m.cornerB),
-                 AtoWorld * m.pointA});
+                 AtoWorld * m.pointA,
+                 m.peakB.value_or(
+                     positions[static_cast<std::size_t>(b)][static_cast<std::size_t>(m.cornerB)])});
         }
       }
       if (progress) progress(pair);
@@ -227,9 +231,14 @@ MultiPreparation MultiReferencePreparer::build(const std::vector<ReferenceImage>
       continue;
     }
     MapPoint point;
+    // The pixel each observation was measured at (PointObservation::peak), per track node.
+    std::vector<std::optional<cv::Point2f>> peaks(trackNodes.size());
     if (trackNodes.size() == 2) {
-      // Two references: the pair's own Eq. 9/10 point, as the two-view preparation keeps it.
-      point.world = pairMatches[matchIndices.front()].world;
+      // Two references: the pair's own Eq. 9/10 point, as the two-view preparation keeps it,
+      // measured at A's corner and the correlation peak in B.
+      const PairMatch& m = pairMatches[matchIndices.front()];
+      point.world = m.world;
+      peaks[trackNodes[0] == m.nodeB ? 0 : 1] = m.peakB;
     } else {
       // 3+ references: all measurements at once, the worst observation out while any is off.
       // The measurements are those the pairwise triangulations used: the corner of the track's
@@ -249,6 +258,7 @@ MultiPreparation MultiReferencePreparer::build(const std::vector<ReferenceImage>
             trackNodes.begin());
         const Eigen::Vector3d q = camera_.K() * (measured[k].worldToCamera * pairMatches[i].world);
         if (q.z() > 0.0) measured[k].pixel = q.head<2>() / q.z();
+        peaks[k] = pairMatches[i].peakB;
       }
       Eigen::Vector3d start = Eigen::Vector3d::Zero();
       for (std::size_t i : matchIndices) start += pairMatches[i].world;
@@ -268,6 +278,7 @@ MultiPreparation MultiReferencePreparer::build(const std::vector<ReferenceImage>
         if (worstError <= params_.maxTrackReprojectionErrorPx) break;
         trackNodes.erase(trackNodes.begin() + static_cast<std::ptrdiff_t>(worst));
         measured.erase(measured.begin() + static_cast<std::ptrdiff_t>(worst));
+        peaks.erase(peaks.begin() + static_cast<std::ptrdiff_t>(worst));
         ++report.droppedObservations;
         if (trackNodes.size() < 2) break;
       }
@@ -282,8 +293,10 @@ MultiPreparation MultiReferencePreparer::build(const std::vector<ReferenceImage>
       }
     }
     bool inFront = true;
-    for (std::size_t node : trackNodes) {
-      point.observations.push_back(nodeOf(node));
+    for (std::size_t k = 0; k < trackNodes.size(); ++k) {
+      PointObservation o = nodeOf(trackNodes[k]);
+      o.peak = peaks[k];
+      point.observations.push_back(o);
       inFront =
           inFront &&
           (poses[static_cast<std::size_t>(point.observations.back().view)] * point.world).z() > 0.0;

@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <filesystem>
 #include <opencv2/core.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,10 @@ struct ReferenceCorner {
 struct ReferenceMatch {
   int cornerA = -1, cornerB = -1;  // indices into cornersA / cornersB
   Eigen::Vector3d pointA;          // triangulated 3D point in camera A's frame (metres)
+  // Where the point was measured in A and B (pixels, with lens distortion): the correlation peaks
+  // it was triangulated from (MultiReferenceMap's PointObservation::peak). None: the corner. Not
+  // written by save() (format 1); the tracker does not use them.
+  std::optional<cv::Point2f> peakA{}, peakB{};
 };
 
 class ReferenceMap {

@@ -12,6 +12,8 @@
 // fixes well (where the origin projects: SD originSdPx; the camera's distance from it: SD
 // translationSdMetres) and one on its orientation (rotationSdDeg); the points are free. A
 // reference that does not see the origin in front of it gets a prior on its centre instead.
+// The residuals are measured at each observation's peak (PointObservation::peak: the pixel the
+// point was triangulated from), or at its corner where the map has no peak (format 1/2 maps).
 #include <vector>
 
 #include "engine/reference/MultiReferenceMap.hpp"

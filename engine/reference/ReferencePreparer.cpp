@@ -226,6 +226,14 @@ Preparation ReferencePreparer::triangulate(const ReferenceImage& a, const Refere
        << ") right?";
     throw Error(ss.str());
   }
+  if (params_.refinePoses) {
+    // B's pose (A held) and the points from the matches, as the N-reference preparation does.
+    MultiReferenceMap multi = MultiReferenceMap::fromPair(map);
+    report.poseRefinement = refineReferencePoses(multi, params_.poseRefinement);
+    ReferenceMap refined = multi.pair(0, 1);
+    map.T_B = refined.T_B;
+    map.matches = std::move(refined.matches);
+  }
   map.check();
   out.report = report;
   return out;

@@ -54,12 +54,12 @@ struct ReferencePreparerParams {
   // matching.max_reprojection_error_px 1.0) admit a corner up to 2.5 px from its point.
   double maxTrackReprojectionErrorPx = 2.5;
   // Refine the given (marker / --poses) poses of references 1..N-1 from the map's own matches,
-  // reference 0 and the scale held by the given poses (ReferencePoseRefiner). Off by default: the
-  // map keeps each observation's detected corner, while the points were triangulated from the
-  // correlation peaks the pairs found (up to matching.max_peak_offset_px away), so on exact poses
-  // the refinement fits the corners and the depth RMS of the simulator's maps grows 3 -> 5 mm; it
-  // pays where the given poses are off by a tenth of a degree or more (see README).
-  bool refinePoses = false;
+  // reference 0 and the scale held by the given poses (ReferencePoseRefiner), fitting the
+  // correlation peaks the points were triangulated from (both the N- and the two-reference
+  // preparation). Measured (README): real postcard clip, grid error mean 0.81 -> 0.61 px; 4 cm
+  // simulator pair, B 0.3 deg off, cube error 0.65 -> 0.12 px; exact poses: within 0.005 px of
+  // the mean and 0.02 px of the p95, depth RMS 2.93 -> 2.91 mm.
+  bool refinePoses = true;
   ReferencePoseRefinerParams poseRefinement;
   // The keypoint layer an N-reference map carries for relocalisation (buildReferenceKeypoints;
   // section `relocalisation`, as in the tracking parameters, whose keypoints must be the same
@@ -96,6 +96,7 @@ struct PreparationReport {
   double baselineMetres = 0.0;                   // distance between the two camera centres
   EpipolarMatchStats matching;
   int occupiedGridCells = 0;  // cells of a 4x3 grid over image A holding a kept match
+  std::optional<ReferencePoseRefinement> poseRefinement;  // when params.refinePoses (B refined)
 };
 
 struct Preparation {

@@ -1,4 +1,4 @@
-// libFuzzer target: map.yml (MultiReferenceMap::load, both format versions: `track`, `view`,
+// libFuzzer target: map.yml (MultiReferenceMap::load, format versions 1-3: `track`, `view`,
 // `show-map`, `extend --map`). The folder holds the reference images the seed maps name
 // (kImageSize, grey), so a well-formed input gets as far as the full consistency check.
 #include <opencv2/imgcodecs.hpp>

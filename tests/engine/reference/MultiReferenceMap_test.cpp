@@ -47,9 +47,12 @@ MultiReferenceMap makeMap() {
   cv::randu(kp.descriptors, 0, 255);
   kp.points = {Eigen::Vector3d(0.01, 0.02, 0.03),
                Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN())};
-  m.points = {{Eigen::Vector3d(0.1, -0.05, 0.2), {{0, 0}, {1, 0}, {2, 1}}},
-              {Eigen::Vector3d(-0.05, 0.02, 0.1), {{1, 2}, {2, 0}}},
-              {Eigen::Vector3d(0.0, 0.0, 0.0), {{0, 2}, {2, 2}}}};
+  // Two observations measured at a correlation peak next to their corner, the others at the
+  // corner itself (no peak).
+  m.points = {
+      {Eigen::Vector3d(0.1, -0.05, 0.2), {{0, 0}, {1, 0, cv::Point2f(12.25f, 19.5f)}, {2, 1}}},
+      {Eigen::Vector3d(-0.05, 0.02, 0.1), {{1, 2}, {2, 0, cv::Point2f(13.125f, 21.f)}}},
+      {Eigen::Vector3d(0.0, 0.0, 0.0), {{0, 2}, {2, 2}}}};
   m.keypointKind = "orb";
   m.poseSource = "test";
   m.preparationParams = "corners: 3\n";
@@ -118,10 +121,69 @@ TEST(MultiReferenceMap, RoundTripsEveryFieldExactly) {
     EXPECT_LT((back.points[p].world - m.points[p].world).cwiseAbs().maxCoeff(), 1e-15);
     ASSERT_EQ(back.points[p].observations.size(), m.points[p].observations.size());
     for (std::size_t o = 0; o < m.points[p].observations.size(); ++o) {
-      EXPECT_EQ(back.points[p].observations[o].view, m.points[p].observations[o].view);
-      EXPECT_EQ(back.points[p].observations[o].corner, m.points[p].observations[o].corner);
+      const PointObservation &a = m.points[p].observations[o], &b = back.points[p].observations[o];
+      EXPECT_EQ(b.view, a.view);
+      EXPECT_EQ(b.corner, a.corner);
+      // Format 3 stores every observation's measured pixel: the peak where there is one, the
+      // corner otherwise (floats, exactly).
+      ASSERT_TRUE(b.peak.has_value());
+      EXPECT_EQ(*b.peak, m.measuredPixel(a));
+      if (a.peak) {
+        EXPECT_EQ(*b.peak, *a.peak);
+      }
     }
   }
+  EXPECT_EQ(*back.points[0].observations[1].peak, cv::Point2f(12.25f, 19.5f));
+  EXPECT_EQ(*back.points[0].observations[0].peak, m.views[0].corners[0].pixel);
+}
+
+TEST(MultiReferenceMap, LoadsAVersionTwoMapAtItsCorners) {
+  // Format 2 is format 3 without observation_peaks: every observation is measured at its corner.
+  const auto dir = test::freshTempDir("MultiReferenceMap_V2");
+  const MultiReferenceMap good = makeMap();
+  good.save(dir / "ok");
+  std::string v2 = test::readTextFile(dir / "ok" / "map.yml");
+  const std::size_t version = v2.find("version: 3\n");
+  ASSERT_NE(version, std::string::npos);
+  v2.replace(version, 10, "version: 2");
+  const std::size_t peaks = v2.find("observation_peaks:"), after = v2.find("preparation_params:");
+  ASSERT_NE(peaks, std::string::npos);
+  ASSERT_NE(after, std::string::npos);
+  const std::string withPeaks = v2;
+  v2.erase(peaks, after - peaks);
+  const std::filesystem::path v2Map = writeMapVariant(dir, good, "v2", v2);
+  const MultiReferenceMap m = MultiReferenceMap::load(v2Map);
+  ASSERT_EQ(m.points.size(), good.points.size());
+  for (std::size_t p = 0; p < m.points.size(); ++p)
+    for (const PointObservation& o : m.points[p].observations) {
+      EXPECT_FALSE(o.peak.has_value());
+      EXPECT_EQ(m.measuredPixel(o), good.views[static_cast<std::size_t>(o.view)]
+                                        .corners[static_cast<std::size_t>(o.corner)]
+                                        .pixel);
+    }
+  // A version-2 file with the version-3 field is not a version-2 map.
+  EXPECT_NE(loadError(writeMapVariant(dir, good, "v2peaks", withPeaks))
+                .find("observation_peaks: unknown key"),
+            std::string::npos);
+  // Saved again, it is a version-3 map with the corners as peaks.
+  m.save(dir / "v3");
+  EXPECT_NE(test::readTextFile(dir / "v3" / "map.yml").find("version: 3\n"), std::string::npos);
+  const MultiReferenceMap back = MultiReferenceMap::load(dir / "v3");
+  EXPECT_EQ(*back.points[0].observations[1].peak, good.views[1].corners[0].pixel);
+}
+
+TEST(MultiReferenceMap, PeaksTravelThroughPairAndFromPair) {
+  const MultiReferenceMap m = makeMap();
+  // Point 0 is seen by views 0 (corner 0, no peak) and 1 (corner 0, peak).
+  const ReferenceMap p = m.pair(0, 1);
+  ASSERT_EQ(p.matches.size(), 1u);
+  EXPECT_FALSE(p.matches[0].peakA.has_value());
+  ASSERT_TRUE(p.matches[0].peakB.has_value());
+  EXPECT_EQ(*p.matches[0].peakB, cv::Point2f(12.25f, 19.5f));
+  const MultiReferenceMap back = MultiReferenceMap::fromPair(p);
+  ASSERT_EQ(back.points.size(), 1u);
+  EXPECT_FALSE(back.points[0].observations[0].peak.has_value());
+  EXPECT_EQ(back.points[0].observations[1].peak, p.matches[0].peakB);
 }
 
 TEST(MultiReferenceMap, LoadsAVersionOneMap) {
@@ -215,6 +277,14 @@ TEST(MultiReferenceMap, CheckNamesTheBadField) {
             }).find("points[2].world lies behind the camera of views[0]"),
             std::string::npos);
   EXPECT_NE(broken([](MultiReferenceMap& m) {
+              m.points[1].observations[1].peak->y = std::numeric_limits<float>::infinity();
+            }).find("points[1].observations[1].peak is not finite"),
+            std::string::npos);
+  EXPECT_NE(broken([](MultiReferenceMap& m) {
+              m.points[0].observations[2].peak = cv::Point2f(-1.f, 5.f);
+            }).find("points[0].observations[2].peak lies outside the image"),
+            std::string::npos);
+  EXPECT_NE(broken([](MultiReferenceMap& m) {
               m.views[1].corners[1].pixel.x = std::numeric_limits<float>::quiet_NaN();
             }).find("views[1].corners[1] is not finite"),
             std::string::npos);
@@ -262,9 +332,22 @@ TEST(MultiReferenceMap, LoadRefusesCorruptedFilesNamingTheField) {
   EXPECT_NE(loadError(dir / "absent").find("does not exist"), std::string::npos);
   EXPECT_NE(loadError(variant("truncated", yml.substr(0, yml.size() / 2))).find("truncated"),
             std::string::npos);
-  EXPECT_NE(
-      loadError(variant("version", replaced("version: 2", "version: 9"))).find("format version 9"),
-      std::string::npos);
+  EXPECT_NE(loadError(variant("version", replaced("version: 3", "version: 9")))
+                .find("format version 9; this reftrack reads versions 1, 2 and 3 (written by a "
+                      "newer reftrack?)"),
+            std::string::npos);
+  EXPECT_NE(loadError(variant("version0", replaced("version: 3", "version: 0")))
+                .find("format version 0; this reftrack reads versions 1, 2 and 3"),
+            std::string::npos);
+  // observation_peaks: one (x, y) row per observation row (7 here), not one number.
+  std::string flatPeaks = yml;
+  const std::size_t peakShape =
+      flatPeaks.find("rows: 7\n   cols: 2", flatPeaks.find("\nobservation_peaks:"));
+  ASSERT_NE(peakShape, std::string::npos);
+  flatPeaks.replace(peakShape, 18, "rows: 14\n   cols: 1");
+  EXPECT_NE(loadError(variant("peaks", flatPeaks))
+                .find("field 'observation_peaks' has the wrong shape (14x1)"),
+            std::string::npos);
   EXPECT_NE(loadError(variant("pointcount", replaced("point_count: 3", "point_count: 4")))
                 .find("field 'points' has the wrong shape"),
             std::string::npos);

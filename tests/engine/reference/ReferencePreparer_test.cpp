@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdio>
 #include <fstream>
 #include <functional>
 #include <opencv2/imgproc.hpp>
@@ -105,6 +107,54 @@ TEST(ReferencePreparer, KnownPosesAreUsedAsGiven) {
   EXPECT_FALSE(p.report.markerRmsA.has_value());
   EXPECT_EQ(p.map.poseSource, "given");
   EXPECT_GE(p.map.matches.size(), 200u);
+}
+
+// Reference B's given pose turned 0.3 deg about the marker's normal (a fiducial's weak
+// direction): by default the preparation refines B from the matches (on the correlation peaks,
+// which every match keeps next to B's corner) and the points with it; with
+// preparation.refine_poses false it keeps the given poses.
+TEST(ReferencePreparer, GivenPosesAreRefinedFromTheMatchesByDefault) {
+  const MarkerScene& s = markerScene();
+  const RigidPose turn(
+      Eigen::AngleAxisd(0.3 * kPi / 180.0, Eigen::Vector3d::UnitZ()).toRotationMatrix(),
+      Eigen::Vector3d::Zero());
+  const RigidPose givenB = s.T_B * turn.inverse();  // B turned about the world origin
+  ReferencePreparerParams keep;
+  keep.refinePoses = false;
+  const Preparation given =
+      ReferencePreparer(s.scene.camera, keep).prepare(s.a, s.b, s.T_A, givenB, "given");
+  const Preparation refined =
+      ReferencePreparer(s.scene.camera).prepare(s.a, s.b, s.T_A, givenB, "given");
+  EXPECT_FALSE(given.report.poseRefinement.has_value());
+  EXPECT_LT(RigidPose::rotationDistance(given.map.T_B, givenB), 1e-12);
+  ASSERT_TRUE(refined.report.poseRefinement.has_value());
+  EXPECT_LT(RigidPose::translationDistance(refined.map.T_A, s.T_A), 1e-12);
+  // Every match keeps the peak it was triangulated from, within max_peak_offset_px of B's corner.
+  for (const ReferenceMatch& m : given.map.matches) {
+    ASSERT_TRUE(m.peakB.has_value());
+    EXPECT_FALSE(m.peakA.has_value());
+    EXPECT_LE(cv::norm(*m.peakB - given.map.cornersB[static_cast<std::size_t>(m.cornerB)].pixel),
+              EpipolarMatcherParams{}.maxPeakOffsetPx + 1e-4);
+  }
+  const auto planeRmsMm = [&](const ReferenceMap& map) {
+    double sq = 0.0;
+    int n = 0;
+    for (const ReferenceMatch& m : map.matches) {
+      const double z = (s.T_A.inverse() * m.pointA).z();
+      if (std::abs(z) > 0.02) continue;  // wrong matches, as above
+      sq += z * z;
+      ++n;
+    }
+    return 1000.0 * std::sqrt(sq / std::max(n, 1));
+  };
+  const double turnedDeg = RigidPose::rotationDistance(given.map.T_B, s.T_B) * 180.0 / kPi;
+  const double refinedDeg = RigidPose::rotationDistance(refined.map.T_B, s.T_B) * 180.0 / kPi;
+  std::printf("B %.3f -> %.3f deg off; points off the plane %.2f -> %.2f mm RMS (%zu -> %zu)\n",
+              turnedDeg, refinedDeg, planeRmsMm(given.map), planeRmsMm(refined.map),
+              given.map.matches.size(), refined.map.matches.size());
+  EXPECT_NEAR(turnedDeg, 0.3, 1e-6);
+  EXPECT_LT(refinedDeg, 0.5 * turnedDeg);
+  EXPECT_LT(planeRmsMm(refined.map), planeRmsMm(given.map));
 }
 
 TEST(ReferencePreparer, EachBadInputHasItsOwnMessage) {
