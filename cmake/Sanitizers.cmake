@@ -28,6 +28,15 @@ if(REFTRACK_SANITIZE)
   if("undefined" IN_LIST reftrack_sanitizer_list)
     list(APPEND reftrack_sanitize_flags -fno-sanitize-recover=undefined)
   endif()
+  if("address" IN_LIST reftrack_sanitizer_list)
+    # Eigen stops trusting glibc's 16-byte-aligned malloc under AddressSanitizer and switches to
+    # its own aligned allocation (an offset stored before the block), but the uninstrumented
+    # Debian libceres keeps the plain malloc path: a matrix Ceres allocates and our code frees
+    # (ceres::GradientChecker::ProbeResults in the cost tests) was reported as a heap-buffer-
+    # overflow 8 bytes before the block. Keep libceres's allocation scheme in our code too
+    # (libceres, in the same process, already relies on that malloc being 16-byte aligned).
+    add_compile_definitions(EIGEN_MALLOC_ALREADY_ALIGNED=1)
+  endif()
   # After CMAKE_CXX_FLAGS_<CONFIG>, so -O1 replaces Release's -O3 (NDEBUG stays as configured).
   add_compile_options(${reftrack_sanitize_flags} -O1 -g1)
   add_link_options(-fsanitize=${REFTRACK_SANITIZE})

@@ -4,7 +4,10 @@
 
 #include <limits>
 
+#include "TestPaths.hpp"
 #include "engine/config/ParamsTestSupport.hpp"
+#include "engine/config/TrackerParams.hpp"
+#include "engine/reference/ReferencePreparer.hpp"
 
 using namespace reftrack;
 using namespace reftrack::test;
@@ -57,6 +60,23 @@ TEST(RelocalisationParams, MissingKeysKeepDefaults) {
   EXPECT_EQ(p.minInliers, 40);
   EXPECT_EQ(p.keypoints, RelocalisationParams{}.keypoints);
   EXPECT_EQ(p.featuresPerFrame, RelocalisationParams{}.featuresPerFrame);
+}
+
+// The parameter-file fuzz target's seeds written from the defaults (tests/fuzz/corpus/params_file)
+// carry the finer-level keys and load through their readers (which refuse unknown keys).
+TEST(RelocalisationParams, FuzzSeedsCarryTheFinerLevelKeys) {
+  const auto seeds = sourceDir() / "tests" / "fuzz" / "corpus" / "params_file";
+  for (const char* name : {"tracker_defaults.yml", "preparation_defaults.yml"}) {
+    const cv::FileStorage fs((seeds / name).string(), cv::FileStorage::READ);
+    ASSERT_TRUE(fs.isOpened()) << name;
+    for (const char* key : {"reference_finer_levels", "frame_finer_levels"})
+      EXPECT_TRUE(fs["relocalisation"][key].isInt()) << name << ": relocalisation." << key;
+  }
+  EXPECT_EQ(TrackerParams::load(seeds / "tracker_defaults.yml").relocalisation.frameFinerLevels,
+            RelocalisationParams{}.frameFinerLevels);
+  EXPECT_EQ(ReferencePreparerParams::load(seeds / "preparation_defaults.yml")
+                .relocalisation.referenceFinerLevels,
+            RelocalisationParams{}.referenceFinerLevels);
 }
 
 TEST(RelocalisationParams, KeypointCountsScaleWithTheImageArea) {
