@@ -32,6 +32,10 @@ cv::Mat cornersToMat(const std::vector<ReferenceCorner>& corners) {
   return m;
 }
 
+bool liesInsideImage(cv::Point2f p, cv::Size size) {
+  return p.x >= -0.5f && p.y >= -0.5f && p.x <= size.width - 0.5f && p.y <= size.height - 0.5f;
+}
+
 void checkCorners(const std::vector<ReferenceCorner>& corners, const std::string& name,
                   cv::Size imageSize) {
   for (std::size_t i = 0; i < corners.size(); ++i) {
@@ -39,9 +43,7 @@ void checkCorners(const std::vector<ReferenceCorner>& corners, const std::string
     const std::string at = name + "[" + std::to_string(i) + "]";
     if (!std::isfinite(c.pixel.x) || !std::isfinite(c.pixel.y) || !std::isfinite(c.rmsContrast))
       throw Error(at + " is not finite");
-    if (c.pixel.x < -0.5f || c.pixel.y < -0.5f || c.pixel.x > imageSize.width - 0.5f ||
-        c.pixel.y > imageSize.height - 0.5f)
-      throw Error(at + " lies outside the image");
+    if (!liesInsideImage(c.pixel, imageSize)) throw Error(at + " lies outside the image");
   }
 }
 

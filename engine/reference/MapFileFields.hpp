@@ -22,6 +22,8 @@ void writeMapCamera(cv::FileStorage& fs, const PinholeCamera& camera);
 cv::Mat poseToMat(const RigidPose& T);
 // Corners as rows (x, y, rmsContrast), CV_32F.
 cv::Mat cornersToMat(const std::vector<ReferenceCorner>& corners);
+// True when p lies on the image (pixel centres at integers: [-0.5, size - 0.5]).
+bool liesInsideImage(cv::Point2f p, cv::Size size);
 // Throws reftrack::Error "name[i] is not finite" / "name[i] lies outside the image".
 void checkCorners(const std::vector<ReferenceCorner>& corners, const std::string& name,
                   cv::Size imageSize);

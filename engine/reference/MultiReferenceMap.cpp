@@ -19,10 +19,6 @@ constexpr const char* kFormatName = "reftrack-reference-map";
 std::string viewName(std::size_t i) { return "views[" + std::to_string(i) + "]"; }
 std::string pointName(std::size_t i) { return "points[" + std::to_string(i) + "]"; }
 
-bool liesInside(cv::Point2f p, cv::Size size) {
-  return p.x >= -0.5f && p.y >= -0.5f && p.x <= size.width - 0.5f && p.y <= size.height - 0.5f;
-}
-
 // A file name that stays inside the map folder: no separators, no "." / "..", not map.yml.
 bool isPlainFileName(const std::string& name) {
   return !name.empty() && name != "." && name != ".." &&
@@ -56,13 +52,7 @@ void MultiReferenceMap::check() const {
          << imageSize.width << "x" << imageSize.height;
       throw Error(ss.str());
     }
-    for (std::size_t i = 0; i < view.corners.size(); ++i) {
-      const ReferenceCorner& c = view.corners[i];
-      const std::string ci = at + ".corners[" + std::to_string(i) + "]";
-      if (!std::isfinite(c.pixel.x) || !std::isfinite(c.pixel.y) || !std::isfinite(c.rmsContrast))
-        throw Error(ci + " is not finite");
-      if (!liesInside(c.pixel, imageSize)) throw Error(ci + " lies outside the image");
-    }
+    checkCorners(view.corners, at + ".corners", imageSize);
     view.keypoints.check(at + ".keypoints");
   }
   for (std::size_t a = 0; a < views.size(); ++a)
@@ -94,7 +84,8 @@ void MultiReferenceMap::check() const {
       if (obs.peak) {
         if (!std::isfinite(obs.peak->x) || !std::isfinite(obs.peak->y))
           throw Error(oi + ".peak is not finite");
-        if (!liesInside(*obs.peak, imageSize)) throw Error(oi + ".peak lies outside the image");
+        if (!liesInsideImage(*obs.peak, imageSize))
+          throw Error(oi + ".peak lies outside the image");
       }
       const Eigen::Vector3d inCamera = views[static_cast<std::size_t>(obs.view)].T * point.world;
       if (!(inCamera.z() > 0.0))
@@ -192,10 +183,6 @@ MultiReferenceMap MultiReferenceMap::load(const std::filesystem::path& folder) {
 
   const MapFieldReader read(where, folder);
   return readCheckedMap<MultiReferenceMap>(where, [&](MultiReferenceMap& map) {
-    const auto requireKnown = [&](const cv::FileNode& node, const std::string& path,
-                                  const std::vector<std::string>& known) {
-      read.requireKnown(node, path, known);
-    };
     std::vector<std::string> rootKeys = {"format",
                                          "version",
                                          "image_width",
@@ -210,29 +197,24 @@ MultiReferenceMap MultiReferenceMap::load(const std::filesystem::path& folder) {
                                          "observations",
                                          "preparation_params"};
     if (hasPeaks) rootKeys.push_back("observation_peaks");
-    requireKnown(fs.root(), "", rootKeys);
-    const auto need = [&](const cv::FileNode& parent, const std::string& key,
-                          const std::string& name) { return read.need(parent, key, name); };
+    read.requireKnown(fs.root(), "", rootKeys);
     const cv::FileNode root = fs.root();
-    const auto readMat = [&](const cv::FileNode& parent, const std::string& key,
-                             const std::string& name, int rows,
-                             int cols) { return read.readMat(parent, key, name, rows, cols); };
     map.camera = read.readCamera(root);
     map.poseSource = static_cast<std::string>(fs["pose_source"]);
     map.keypointKind = static_cast<std::string>(fs["keypoint_kind"]);
     map.preparationParams = static_cast<std::string>(fs["preparation_params"]);
 
-    const cv::FileNode viewsNode = need(root, "views", "views");
+    const cv::FileNode viewsNode = read.need(root, "views", "views");
     if (!viewsNode.isSeq()) throw Error(where + ": field 'views' is not a list");
     for (std::size_t v = 0; v < viewsNode.size(); ++v) {
       const cv::FileNode node = viewsNode[static_cast<int>(v)];
       const std::string at = viewName(v);
       if (!node.isMap()) throw Error(where + ": field '" + at + "' is not a map");
-      requireKnown(node, at, {"name", "T", "anchored", "corners", "keypoints"});
+      read.requireKnown(node, at, {"name", "T", "anchored", "corners", "keypoints"});
       ReferenceView view;
-      view.name = static_cast<std::string>(need(node, "name", at + ".name"));
+      view.name = static_cast<std::string>(read.need(node, "name", at + ".name"));
       view.T = read.readPose(node, "T", at + ".T");
-      view.anchored = static_cast<int>(need(node, "anchored", at + ".anchored")) != 0;
+      view.anchored = static_cast<int>(read.need(node, "anchored", at + ".anchored")) != 0;
       view.corners = read.readCorners(node, "corners", at + ".corners");
       try {
         view.keypoints = ReferenceKeypoints::read(node["keypoints"], at + ".keypoints");
@@ -246,15 +228,15 @@ MultiReferenceMap MultiReferenceMap::load(const std::filesystem::path& folder) {
       map.views.push_back(std::move(view));
     }
 
-    const int pointCount = static_cast<int>(need(root, "point_count", "point_count"));
+    const int pointCount = static_cast<int>(read.need(root, "point_count", "point_count"));
     if (pointCount < 0) throw Error(where + ": field 'point_count' is negative");
-    cv::Mat world = readMat(root, "points", "points", pointCount, 3);
-    cv::Mat obs = readMat(root, "observations", "observations", -1, 3);
+    cv::Mat world = read.readMat(root, "points", "points", pointCount, 3);
+    cv::Mat obs = read.readMat(root, "observations", "observations", -1, 3);
     if (!world.empty()) world.convertTo(world, CV_64F);
     if (!obs.empty()) obs.convertTo(obs, CV_32S);
     cv::Mat peaks;
     if (hasPeaks) {
-      peaks = readMat(root, "observation_peaks", "observation_peaks", obs.rows, 2);
+      peaks = read.readMat(root, "observation_peaks", "observation_peaks", obs.rows, 2);
       if (!peaks.empty()) peaks.convertTo(peaks, CV_32F);
     }
     map.points.resize(static_cast<std::size_t>(pointCount));
