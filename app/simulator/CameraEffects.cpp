@@ -20,14 +20,6 @@ constexpr double kWebcamDefocusPx = 0.8;    // fixed-focus lens, circle of confu
 
 const std::vector<std::string> kCodecs = {"none", "h264", "mp4v", "mjpeg"};
 
-// The rule of effects.codec (ParamFields.hpp).
-struct KnownCodec {
-  void check(const std::string& name, const std::string& codec) const {
-    if (std::find(kCodecs.begin(), kCodecs.end(), codec) == kCodecs.end())
-      throw Error(name + " must be none, h264, mp4v or mjpeg, got '" + codec + "'");
-  }
-};
-
 }  // namespace
 
 bool CameraEffects::any() const {
@@ -51,7 +43,7 @@ void CameraEffects::fields(Self& p, const Field& field) {
   field("conversion_gain", p.conversionGain, Range{0.0, 100.0});
   field("read_noise", p.readNoise, Range{0.0, 100.0});
   field("defocus_radius_px", p.defocusRadiusPx, Range{0.0, 50.0});
-  field("codec", p.codec, KnownCodec{});
+  field("codec", p.codec, OneOf{kCodecs});
   field("jpeg_quality", p.jpegQuality, Range{1, 100});
   field("group_frames", p.groupFrames, Range{1, 10000});
 }

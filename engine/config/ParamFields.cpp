@@ -1,8 +1,17 @@
 #include "engine/config/ParamFields.hpp"
 
+#include <algorithm>
+
 #include "engine/core/Error.hpp"
 
 namespace reftrack {
+
+void OneOf::check(const std::string& name, const std::string& value) const {
+  if (std::find(words.begin(), words.end(), value) != words.end()) return;
+  std::string list;
+  for (const std::string& w : words) list += (list.empty() ? "" : ", ") + w;
+  throw Error("parameter '" + name + "' must be one of " + list + "; got '" + value + "'");
+}
 
 void OddRange::check(const std::string& name, const int& value) const {
   requireIntInRange(name, value, lo, hi);

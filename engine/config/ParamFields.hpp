@@ -65,6 +65,12 @@ struct TextForm {
   void check(const std::string&, const Enum&) const {}
 };
 
+// One of the given words: "parameter 'section.key' must be one of a, b, c; got 'x'".
+struct OneOf {
+  std::vector<std::string> words;
+  void check(const std::string& name, const std::string& value) const;
+};
+
 struct Unchecked {
   template <class T>
   void check(const std::string&, const T&) const {}

@@ -10,14 +10,6 @@ namespace reftrack {
 
 namespace {
 
-// The rule of relocalisation.keypoints (ParamFields.hpp).
-struct KnownKeypoints {
-  void check(const std::string& name, const std::string& keypoints) const {
-    if (keypoints != "orb" && keypoints != "akaze" && keypoints != "sift")
-      throw Error(name + " must be 'orb', 'akaze' or 'sift', got '" + keypoints + "'");
-  }
-};
-
 int scaledFrom640x480(int count, cv::Size size) {
   const double area = static_cast<double>(size.area()) / (640.0 * 480.0);
   return std::max(1, static_cast<int>(std::lround(count * area)));
@@ -35,7 +27,7 @@ int RelocalisationParams::featuresPerReferenceFor(cv::Size size) const {
 template <class Self, class Field>
 void RelocalisationParams::fields(Self& p, const Field& field) {
   field("enabled", p.enabled);
-  field("keypoints", p.keypoints, KnownKeypoints{});
+  field("keypoints", p.keypoints, OneOf{{"orb", "akaze", "sift"}});
   field("features_per_frame", p.featuresPerFrame, Range{50, 100000});
   field("features_per_reference", p.featuresPerReference, Range{50, 100000});
   field("reference_finer_levels", p.referenceFinerLevels, Range{0, 8});

@@ -144,3 +144,12 @@ TEST(ParamFields, TheFirstBadFieldInListOrderIsNamed) {
   EXPECT_EQ(errorMessage([&] { box.check(); }),
             "parameter 'box.ratio' must be finite (got NaN/inf)");
 }
+
+TEST(ParamFields, OneOfAcceptsItsWordsAndNamesThemOtherwise) {
+  const OneOf rule{{"cauchy", "huber", "none"}};
+  EXPECT_NO_THROW(rule.check("ba.loss", "huber"));
+  EXPECT_EQ(errorMessage([&] { rule.check("ba.loss", "Huber"); }),
+            "parameter 'ba.loss' must be one of cauchy, huber, none; got 'Huber'");
+  EXPECT_EQ(errorMessage([&] { rule.check("ba.loss", ""); }),
+            "parameter 'ba.loss' must be one of cauchy, huber, none; got ''");
+}
