@@ -34,7 +34,8 @@ std::string quoted(const std::string& text) {
 std::string csvHeader() {
   std::string h =
       "index,timestamp,status,tx,ty,tz,qx,qy,qz,qw,corners,matches_a,matches_b,three_view,"
-      "inliers,ms_total,reference_a,reference_b,reloc_attempted,reloc_succeeded,reloc_ms";
+      "inliers,ms_total,reference_a,reference_b,reloc_attempted,reloc_succeeded,reloc_ms,"
+      "rolling_shutter_readout";
   for (const char* s : kStages) {
     std::string name = s;
     std::replace(name.begin(), name.end(), ' ', '_');
@@ -73,6 +74,7 @@ int runSixDofTrack(const SixDofTrackOptions& o) {
   TumTrajectory trajectory;
   ProgressBar progress("track 6dof", static_cast<std::size_t>(input.expectedCount()));
   int processed = 0, tracked = 0, switches = 0, relocAttempts = 0, relocSucceeded = 0;
+  double readout = params.pose.rollingShutterReadout;  // the last tracked frame's
   std::pair<int, int> lastPair{-1, -1};
   std::vector<double> ms, relocMs;
   const InterruptibleWork interruptible;  // Ctrl-C ends the loop; the outputs are then finished
@@ -84,6 +86,7 @@ int runSixDofTrack(const SixDofTrackOptions& o) {
     const PoseTrackingResult& r = multi.tracking;
     ms.push_back(r.totalMs);
     if (r.state == TrackingState::Tracking) {
+      readout = r.rollingShutterReadout;
       const std::pair<int, int> pair{multi.referenceA, multi.referenceB};
       if (lastPair.first >= 0 && pair != lastPair) ++switches;
       lastPair = pair;
@@ -108,7 +111,8 @@ int runSixDofTrack(const SixDofTrackOptions& o) {
     csv << ',' << r.corners << ',' << r.matchesA << ',' << r.matchesB << ',' << r.threeView << ','
         << r.inliers << ',' << r.totalMs << ',' << multi.referenceA << ',' << multi.referenceB
         << ',' << (multi.relocalisation.attempted ? 1 : 0) << ','
-        << (multi.relocalisation.succeeded ? 1 : 0) << ',' << multi.relocalisation.ms;
+        << (multi.relocalisation.succeeded ? 1 : 0) << ',' << multi.relocalisation.ms << ','
+        << r.rollingShutterReadout;
     for (const char* s : kStages) {
       csv << ',';
       for (const StageTiming& t : r.timings)
@@ -143,6 +147,9 @@ int runSixDofTrack(const SixDofTrackOptions& o) {
   std::printf("6dof: %d frames, %d tracked (%.1f%%), median %.2f ms per frame\n", processed,
               tracked, 100.0 * tracked / processed, ms[ms.size() / 2]);
   std::printf("references: %d in the map, %d pair switches\n", map.size(), switches);
+  std::printf("rolling-shutter readout: %.3f of the frame interval (%s)\n", readout,
+              params.pose.estimateRollingShutter ? "estimated online, pose.estimate_rolling_shutter"
+                                                 : "pose.rolling_shutter_readout");
   if (relocAttempts > 0) {
     std::nth_element(relocMs.begin(), relocMs.begin() + static_cast<long>(relocMs.size() / 2),
                      relocMs.end());

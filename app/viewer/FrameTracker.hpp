@@ -48,7 +48,8 @@ struct TrackingResult {
   int matches = 0;
   int inliers = 0;
   TrackingDebug debug;
-  std::optional<ReferencesFrame> references;  // set by the multi-reference 6-DOF tracker
+  std::optional<ReferencesFrame> references;    // set by the multi-reference 6-DOF tracker
+  std::optional<double> rollingShutterReadout;  // 6-DOF: the readout in use (fixed or estimated)
 };
 
 class FrameTracker {

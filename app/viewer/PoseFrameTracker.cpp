@@ -20,6 +20,7 @@ TrackingResult PoseFrameTracker::process(const cv::Mat& frame, int, double) {
   for (const StageTiming& t : p.timings) r.stages.push_back({t.stage, t.ms});
   r.matches = p.matchesA + p.matchesB;
   r.inliers = p.inliers;
+  r.rollingShutterReadout = p.rollingShutterReadout;
   r.debug.corners = p.frameCorners;
   ReferencesFrame refs;
   refs.referenceA = last_.referenceA;

@@ -42,6 +42,11 @@ void drawTrackingPanel(ViewerState& state, const cv::Rect2f& placement) {
     changed |= inputDouble("Q trans (m/fr)", p.pose.translationSigma, 1e-4, "%.5f");
     changed |= inputDouble("Q rot (rad/fr)", p.pose.rotationSigma, 1e-4, "%.5f");
     changed |= ImGui::InputText("Q file", &p.pose.motionModelFile);
+    // Rolling shutter: the readout as a fraction of the frame interval, given or estimated online.
+    changed |= inputDouble("RS readout", p.pose.rollingShutterReadout, 0.05, "%.2f");
+    changed |= ImGui::Checkbox("estimate readout", &p.pose.estimateRollingShutter);
+    if (state.rollingShutterReadout)
+      ImGui::Text("readout in use: %.3f", *state.rollingShutterReadout);
   }
   if (ImGui::CollapsingHeader("RANSAC", ImGuiTreeNodeFlags_DefaultOpen)) {
     changed |= ImGui::InputInt("iterations", &p.ransac.maxIterations);

@@ -270,6 +270,7 @@ struct FrameLoop {
     if (result.worldToCamera) stats.pose = result.worldToCamera->toVector6();
     state.stats.add(std::move(stats));
     state.lastStatus = result.status;
+    state.rollingShutterReadout = result.rollingShutterReadout;
     state.source.currentIndex = current.index;
     state.source.droppedFrames = session.grabber->droppedFrames();
     ++processed;

@@ -70,6 +70,7 @@ struct ViewerState {
   std::string paramsPath = "reftrack_params.yml";
   std::string paramsMessage;
   std::string lastStatus;
+  std::optional<double> rollingShutterReadout;  // the 6-DOF tracker's, last frame
   StatsHistory stats;
   RecordState record;
   CalibrationState calibration;

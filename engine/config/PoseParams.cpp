@@ -24,6 +24,7 @@ void PoseParams::fields(Self& p, const Field& field) {
   field("rotation_sigma", p.rotationSigma, Range{1e-12, 1e3});
   field("motion_model_file", p.motionModelFile);
   field("rolling_shutter_readout", p.rollingShutterReadout, Range{0.0, 1.0});
+  field("estimate_rolling_shutter", p.estimateRollingShutter);
 }
 
 template struct ParamSection<PoseParams>;

@@ -28,6 +28,9 @@ struct PoseParams : ParamSection<PoseParams> {
   // corner is moved back along its frame-to-frame motion to where it was when the middle row was
   // exposed (the instant the pose stands for) before it enters the pose estimation.
   double rollingShutterReadout = 0.0;
+  // Estimate the readout online from the tracked frames (RollingShutterEstimator), starting from
+  // rolling_shutter_readout; a global-shutter camera's estimate stays at about 0.
+  bool estimateRollingShutter = true;
 
   template <class Self, class Field>  // its keys, in order: ParamFields.hpp
   static void fields(Self& self, const Field& field);

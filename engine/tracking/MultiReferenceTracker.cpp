@@ -8,6 +8,7 @@
 
 #include "engine/core/Error.hpp"
 #include "engine/core/ThreadCpuClock.hpp"
+#include "engine/estimation/RollingShutterEstimator.hpp"
 #include "engine/relocalisation/Relocaliser.hpp"
 #include "engine/tracking/ReferenceSelector.hpp"
 
@@ -61,6 +62,8 @@ struct MultiReferenceTracker::Impl {
   std::optional<CornerVarianceModel> varianceModel;
   ReferenceSelector selector;
   std::vector<CachedTracker> cache;
+  // One camera, one rolling-shutter readout: every pair tracker refines the same estimate.
+  std::shared_ptr<RollingShutterEstimator> shutter;
   std::uint64_t frameCount = 0;
   // Invariant: only the active pair's tracker may be in the Tracking state; any other cached
   // tracker is reset before it is left, so it never resumes from stale matches.
@@ -77,7 +80,11 @@ struct MultiReferenceTracker::Impl {
   int framesSinceRelocalisation = 0;  // lost frames since the last attempt
 
   Impl(MultiReferenceMap m, const TrackerParams& p, PoseTrackerLimits l)
-      : map(checked(std::move(m))), params(p), limits(l), selector(map, p.references) {
+      : map(checked(std::move(m))),
+        params(p),
+        limits(l),
+        selector(map, p.references),
+        shutter(std::make_shared<RollingShutterEstimator>(p.pose.rollingShutterReadout)) {
     params.check();
     limits.check();
     if (map.size() < 2)
@@ -131,6 +138,7 @@ struct MultiReferenceTracker::Impl {
     auto tracker = std::make_unique<PoseTracker>(map.pair(pair.a, pair.b), params, limits);
     if (motionModel) tracker->setMotionModel(*motionModel);
     if (varianceModel) tracker->setCornerVarianceModel(*varianceModel);
+    tracker->shareRollingShutterEstimator(shutter);
     cache.push_back({pair, std::move(tracker), frameCount});
     return *cache.back().tracker;
   }

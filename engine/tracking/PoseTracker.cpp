@@ -11,6 +11,7 @@
 #include "engine/core/Error.hpp"
 #include "engine/estimation/MotionModelFile.hpp"
 #include "engine/estimation/RegularizedPoseEstimator.hpp"
+#include "engine/estimation/RollingShutterEstimator.hpp"
 #include "engine/estimation/TemporalRegularizer.hpp"
 #include "engine/features/CornerDetector.hpp"
 #include "engine/geometry/FundamentalMatrix.hpp"
@@ -133,6 +134,9 @@ struct PoseTracker::Impl {
   std::unique_ptr<CornerDetector> detector;
   std::unique_ptr<RegularizedPoseEstimator> estimator;
   std::unique_ptr<TemporalRegularizer> regularizer;
+  // The readout in use when pose.estimate_rolling_shutter is on (shared between the pair
+  // trackers of a MultiReferenceTracker: it belongs to the camera, not to a reference pair).
+  std::shared_ptr<RollingShutterEstimator> shutter;
   TrackingState state = TrackingState::Initialising;
 
   // Previous frame: the corners used for frame-to-frame matching and their NCC windows.
@@ -156,6 +160,12 @@ struct PoseTracker::Impl {
     estimator = std::make_unique<RegularizedPoseEstimator>(map.camera.K(), map.T_AB());
     applyCornerParams();
     applyPoseParams();
+    shutter = std::make_shared<RollingShutterEstimator>(params.pose.rollingShutterReadout);
+  }
+
+  double readout() const {
+    return params.pose.estimateRollingShutter ? shutter->readout()
+                                              : params.pose.rollingShutterReadout;
   }
 
   // The frame's corner detector (kept across frames: it adapts its threshold to the sequence).
@@ -367,23 +377,39 @@ PoseTrackingResult PoseTracker::Impl::process(const cv::Mat& frame) {
   }
   r.matchesA = static_cast<int>(mA.size());
   r.matchesB = static_cast<int>(mB.size());
+  // Per frame corner, how far its undistorted measurement moves per unit of readout (for the
+  // readout's online estimate; empty when it is off or the frame has no frame-to-frame motion).
+  std::vector<Eigen::Vector2d> shiftPerReadout;
+  const double readoutUsed = readout();
+  r.rollingShutterReadout = readoutUsed;
   {
     // Rolling shutter (pose.rolling_shutter_readout): row y was exposed (y - c) / (rows - 1)
     // readouts after the middle row c; the corner moves back along its frame-to-frame motion
     // p - H p (one frame interval) by that fraction of it. Matching keeps the observed pixels.
-    std::vector<cv::Point2f> measured = pixels;
-    const double readout = params.pose.rollingShutterReadout;
-    if (readout > 0 && haveFrameToFrame) {
+    const bool estimating = params.pose.estimateRollingShutter && haveFrameToFrame;
+    std::vector<cv::Point2f> measured = pixels, unitShifted;
+    if ((readoutUsed > 0 || estimating) && haveFrameToFrame) {
       const double middle = 0.5 * (gray.rows - 1);
-      for (cv::Point2f& p : measured) {
+      if (estimating) unitShifted = pixels;
+      for (std::size_t i = 0; i < measured.size(); ++i) {
+        cv::Point2f& p = measured[i];
         const cv::Vec3d q = H * cv::Vec3d(p.x, p.y, 1.0);
         if (!(std::abs(q[2]) > 1e-12)) continue;
-        const double f = readout * (p.y - middle) / (gray.rows - 1);
-        p.x -= static_cast<float>(f * (p.x - q[0] / q[2]));
-        p.y -= static_cast<float>(f * (p.y - q[1] / q[2]));
+        const double f = (p.y - middle) / (gray.rows - 1);
+        const double dx = f * (p.x - q[0] / q[2]), dy = f * (p.y - q[1] / q[2]);
+        if (estimating)
+          unitShifted[i] -= cv::Point2f(static_cast<float>(dx), static_cast<float>(dy));
+        p.x -= static_cast<float>(readoutUsed * dx);
+        p.y -= static_cast<float>(readoutUsed * dy);
       }
     }
     for (const cv::Point2f& p : map.camera.undistortPixels(measured)) undist.push_back(toEigen(p));
+    if (estimating) {
+      const std::vector<cv::Point2f> raw = map.camera.undistortPixels(pixels);
+      const std::vector<cv::Point2f> moved = map.camera.undistortPixels(unitShifted);
+      for (std::size_t i = 0; i < raw.size(); ++i)
+        shiftPerReadout.push_back(toEigen(raw[i]) - toEigen(moved[i]));
+    }
   }
 
   // ---- 3D-2D pairs (map points seen through A or B), PnP-RANSAC, gate.
@@ -497,10 +523,12 @@ PoseTrackingResult PoseTracker::Impl::process(const cv::Mat& frame) {
                         sigmaOf(corners[static_cast<std::size_t>(mB[i].frameCorner)].contrast,
                                 refB.contrast[static_cast<std::size_t>(mB[i].referenceCorner)])});
   }
+  std::vector<int> threeViewCorner;  // frame corner of each meas.threeView entry
   for (const Pair3D& p : pairs) {
     const Eigen::Vector3d& P = map.matches[static_cast<std::size_t>(p.mapMatch)].pointA;
     const Eigen::Vector2d& pK = undist[static_cast<std::size_t>(p.frameCorner)];
     if ((map.camera.project(TAkLin * P) - pK).norm() > gate) continue;
+    threeViewCorner.push_back(p.frameCorner);
     meas.threeView.push_back(
         {P, pK, varianceModel.sigma(corners[static_cast<std::size_t>(p.frameCorner)].contrast)});
   }
@@ -553,6 +581,19 @@ PoseTrackingResult PoseTracker::Impl::process(const cv::Mat& frame) {
   r.T_Ak = TAk;
   r.worldToCamera = TAk * map.T_A;
   r.covariance = est->covariance;
+  if (!shiftPerReadout.empty()) {
+    // The tracked frame's residuals inform the readout's estimate (used from a later frame on).
+    std::vector<RollingShutterObservation> observations;
+    observations.reserve(meas.threeView.size());
+    for (std::size_t i = 0; i < meas.threeView.size(); ++i) {
+      const ThreeViewMatch& m = meas.threeView[i];
+      const Eigen::Vector3d X = TAk * m.pointA;
+      observations.push_back({X, map.camera.project(X) - m.pK,
+                              shiftPerReadout[static_cast<std::size_t>(threeViewCorner[i])],
+                              m.sigma});
+    }
+    shutter->addFrame(map.camera.K()(0, 0), map.camera.K()(1, 1), observations);
+  }
 
   // Seeds for the next frame: the inlier matches.
   prevA.clear();
@@ -580,6 +621,9 @@ PoseTracker::~PoseTracker() = default;
 PoseTrackingResult PoseTracker::process(const cv::Mat& frame) { return impl_->process(frame); }
 void PoseTracker::setParams(const TrackerParams& params) {
   params.check();
+  if (params.pose.rollingShutterReadout != impl_->params.pose.rollingShutterReadout ||
+      params.pose.estimateRollingShutter != impl_->params.pose.estimateRollingShutter)
+    impl_->shutter->reset(params.pose.rollingShutterReadout);
   impl_->params = params;
   impl_->applyCornerParams();
   impl_->applyPoseParams();
@@ -605,6 +649,11 @@ void PoseTracker::reset() {
   impl_->prevA.clear();
   impl_->prevB.clear();
 }
+void PoseTracker::shareRollingShutterEstimator(std::shared_ptr<RollingShutterEstimator> shared) {
+  if (!shared) throw Error("PoseTracker::shareRollingShutterEstimator: null estimator");
+  impl_->shutter = std::move(shared);
+}
+double PoseTracker::rollingShutterReadout() const { return impl_->readout(); }
 const ReferenceMap& PoseTracker::map() const { return impl_->map; }
 TrackingState PoseTracker::state() const { return impl_->state; }
 

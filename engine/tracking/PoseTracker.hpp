@@ -23,6 +23,8 @@
 
 namespace reftrack {
 
+class RollingShutterEstimator;
+
 enum class TrackingState { Initialising, Tracking, Lost };
 const char* toString(TrackingState state);
 
@@ -53,6 +55,7 @@ struct PoseTrackingResult {
   std::optional<RigidPose> T_Ak;
   Matrix6d covariance = Matrix6d::Zero();  // Omega_k of x_Ak
   double supportSdPx = 0.0;                // PoseSupport: reprojection SD from the matches alone
+  double rollingShutterReadout = 0.0;      // the readout this frame was corrected with
   int corners = 0, matchesA = 0, matchesB = 0, threeView = 0, inliers = 0;
   std::vector<StageTiming> timings;
   double totalMs = 0.0;
@@ -79,6 +82,10 @@ class PoseTracker {
   // wide_baseline.seed_search), then the usual outlier rejection, pose estimation and support
   // checks run, so a wrong seed ends Lost, never in a wrong pose. Resets the regulariser history.
   void seed(const RigidPose& worldToCamera);
+  // The rolling-shutter readout in use (pose.rolling_shutter_readout, or its online estimate).
+  double rollingShutterReadout() const;
+  // Trackers of one camera share their readout estimate (MultiReferenceTracker's pair trackers).
+  void shareRollingShutterEstimator(std::shared_ptr<RollingShutterEstimator> shared);
   const ReferenceMap& map() const;
   TrackingState state() const;
 

@@ -142,9 +142,10 @@ CommandRegistration registerExperimentSixDofCommand(CLI::App& parent) {
       ->check(CLI::Range(10.0, 150.0));
   addDistortionOption(sub, o->simulation.distortion);
   sub->add_option("--params", o->params, "TrackerParams YAML")->check(CLI::ExistingFile);
-  sub->add_flag("--known-readout", o->knownReadout,
-                "Give the tracker the simulated rolling shutter's readout "
-                "(pose.rolling_shutter_readout = readout / frame interval)");
+  sub->add_flag(
+      "--known-readout", o->knownReadout,
+      "Give the tracker the simulated rolling shutter's readout "
+      "(pose.rolling_shutter_readout = readout / frame interval; its online estimate off)");
   sub->add_flag("!--no-baseline", o->baseline, "Skip the ORB + PnP + Kalman baseline");
   sub->add_flag("!--no-fit-q", o->fitQ,
                 "Use Q from --params instead of fitting it (paper Sec. 5.3) to the ground truth "
@@ -167,9 +168,11 @@ CommandRegistration registerExperimentSixDofCommand(CLI::App& parent) {
         cv::setNumThreads(1);
         const std::unique_ptr<render::GlContext> gl = render::createHeadlessContext();
         TrackerParams params = o->params.empty() ? TrackerParams{} : TrackerParams::load(o->params);
-        if (o->knownReadout)  // the camera's line delay is known: the tracker corrects for it
+        if (o->knownReadout) {  // the camera's line delay is known: the tracker corrects for it
           params.pose.rollingShutterReadout =
               o->simulation.effects.readoutMs * o->simulation.fps / 1000.0;
+          params.pose.estimateRollingShutter = false;
+        }
         if (o->effectTable) {
           printEffectTable(o->simulation, params, fittedMotion(o->simulation, o->fitQ), o->cacheDir,
                            o->effectRows);

@@ -22,6 +22,8 @@ TEST(PoseParams, DefaultsAndRoundTrip) {
   in.motionModelFile = "model.yml";
   EXPECT_DOUBLE_EQ(in.rollingShutterReadout, 0.0);  // global shutter unless told
   in.rollingShutterReadout = 0.6;
+  EXPECT_TRUE(in.estimateRollingShutter);  // estimated online unless told not to
+  in.estimateRollingShutter = false;
   PoseParams out;
   roundTrip(in, out);
   EXPECT_EQ(out.estimator, PoseEstimatorKind::Standard);
@@ -31,6 +33,7 @@ TEST(PoseParams, DefaultsAndRoundTrip) {
   EXPECT_DOUBLE_EQ(out.rotationSigma, 0.003);
   EXPECT_EQ(out.motionModelFile, "model.yml");
   EXPECT_DOUBLE_EQ(out.rollingShutterReadout, 0.6);
+  EXPECT_FALSE(out.estimateRollingShutter);
 }
 
 TEST(PoseParams, EveryBadFieldIsNamed) {
