@@ -142,6 +142,7 @@ struct PoseTracker::Impl {
   // Previous frame: the corners used for frame-to-frame matching and their NCC windows.
   std::vector<cv::Point2f> prevF2F;
   NccPatches prevF2FWindows;
+  std::optional<cv::Matx33d> prevFrameToFrame;  // V_{k-1} -> V_{k-2}, when it was measured
   std::vector<PreviousMatch> prevA, prevB;
   // While not tracking, each frame also tries the next of these scale hypotheses (see
   // matchAtScale) when matching at the reference's own scale finds too little.
@@ -208,6 +209,7 @@ struct PoseTracker::Impl {
     regularizer->reset();
     prevA.clear();
     prevB.clear();
+    prevFrameToFrame.reset();
   }
 
   // Previous-match seeds from a predicted pose: every map point in front of the camera and
@@ -384,8 +386,8 @@ PoseTrackingResult PoseTracker::Impl::process(const cv::Mat& frame) {
   r.rollingShutterReadout = readoutUsed;
   {
     // Rolling shutter (pose.rolling_shutter_readout): row y was exposed (y - c) / (rows - 1)
-    // readouts after the middle row c; the corner moves back along its frame-to-frame motion
-    // p - H p (one frame interval) by that fraction of it. Matching keeps the observed pixels.
+    // readouts after the middle row c; the corner moves back along its image velocity (pixels
+    // per frame interval) by that fraction of it. Matching keeps the observed pixels.
     const bool estimating = params.pose.estimateRollingShutter && haveFrameToFrame;
     std::vector<cv::Point2f> measured = pixels, unitShifted;
     if ((readoutUsed > 0 || estimating) && haveFrameToFrame) {
@@ -396,7 +398,20 @@ PoseTrackingResult PoseTracker::Impl::process(const cv::Mat& frame) {
         const cv::Vec3d q = H * cv::Vec3d(p.x, p.y, 1.0);
         if (!(std::abs(q[2]) > 1e-12)) continue;
         const double f = (p.y - middle) / (gray.rows - 1);
-        const double dx = f * (p.x - q[0] / q[2]), dy = f * (p.y - q[1] / q[2]);
+        // The image velocity at the middle row's instant: H gives it half a frame earlier, and
+        // the previous frame's homography one and a half; extrapolated linearly (hand-held motion
+        // accelerates: measured at 1280x720, webcam effects, readout known, cube error mean
+        // 0.353 px with the backward difference alone, 0.267 px extrapolated).
+        double vx = p.x - q[0] / q[2], vy = p.y - q[1] / q[2];
+        if (prevFrameToFrame) {
+          const cv::Vec3d q2 = (*prevFrameToFrame) * q;
+          if (std::abs(q2[2]) > 1e-12) {
+            const double ux = q[0] / q[2] - q2[0] / q2[2], uy = q[1] / q[2] - q2[1] / q2[2];
+            vx = 1.5 * vx - 0.5 * ux;
+            vy = 1.5 * vy - 0.5 * uy;
+          }
+        }
+        const double dx = f * vx, dy = f * vy;
         if (estimating)
           unitShifted[i] -= cv::Point2f(static_cast<float>(dx), static_cast<float>(dy));
         p.x -= static_cast<float>(readoutUsed * dx);
@@ -404,6 +419,7 @@ PoseTrackingResult PoseTracker::Impl::process(const cv::Mat& frame) {
       }
     }
     for (const cv::Point2f& p : map.camera.undistortPixels(measured)) undist.push_back(toEigen(p));
+    prevFrameToFrame = haveFrameToFrame ? std::optional<cv::Matx33d>(H) : std::nullopt;
     if (estimating) {
       const std::vector<cv::Point2f> raw = map.camera.undistortPixels(pixels);
       const std::vector<cv::Point2f> moved = map.camera.undistortPixels(unitShifted);
