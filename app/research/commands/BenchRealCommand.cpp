@@ -123,6 +123,8 @@ CommandRegistration registerBenchRealCommand(CLI::App& parent) {
                         "cpu_ms_p90");
             printRun(r.reftrack);
             if (r.baseline) printRun(*r.baseline);
+            std::printf("rolling-shutter readout (reftrack, last tracked frame): %.3f\n",
+                        r.rollingShutterReadout);
             std::printf("per-stage median ms (wall, reftrack):");
             for (const auto& [stage, ms] : r.reftrack.stageMs)
               std::printf("  %s %.3f", stage.c_str(), median(ms));

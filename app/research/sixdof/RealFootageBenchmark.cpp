@@ -194,6 +194,7 @@ RealFootageResult runRealFootageBenchmark(const RealFootageOptions& o, const Tra
         ++run.tracked;
         run.estimate.poses.push_back({k / clip.fps, *r.worldToCamera});
         scorer.score(static_cast<std::size_t>(k), *r.worldToCamera, run);
+        result.rollingShutterReadout = r.rollingShutterReadout;
       }
     }
     if (!o.baseline) continue;

@@ -59,6 +59,7 @@ struct RealFootageResult {
   double aspectRatio = 0.0, aspectRms = 0.0;  // of the card fit (PlanarTargetTruth)
   std::vector<double> referenceBaselinesMm;   // reference i to reference 0
   int mapPoints = 0;
+  double rollingShutterReadout = 0.0;  // reftrack's at the end of the first pass
   RealFootageRun reftrack;
   std::optional<RealFootageRun> baseline;
 };
