@@ -149,20 +149,24 @@ double RelocalisationExperimentResult::medianRelocaliseCpuMs() const {
 TrackedFrameTiming compareTrackedFrameMs(const std::vector<cv::Mat>& frames,
                                          const FrameTracker& first, const FrameTracker& second) {
   TrackedFrameTiming timing;
-  const auto timed = [](const FrameTracker& tracker, const cv::Mat& frame,
-                        std::vector<double>& ms) {
+  const auto timed = [](const FrameTracker& tracker, const cv::Mat& frame, std::vector<double>& ms,
+                        std::vector<double>& cpuMs) {
     const Clock::time_point t0 = Clock::now();
+    const double cpu0 = threadCpuMs();
     const bool posed = tracker(frame).pose.has_value();
+    const double cpu = threadCpuMs() - cpu0;
     const double elapsed = msSince(t0);
-    if (posed) ms.push_back(elapsed);
+    if (!posed) return;
+    ms.push_back(elapsed);
+    cpuMs.push_back(cpu);
   };
   for (std::size_t k = 0; k < frames.size(); ++k) {
     if (k % 2 == 0) {
-      timed(first, frames[k], timing.msFirst);
-      timed(second, frames[k], timing.msSecond);
+      timed(first, frames[k], timing.msFirst, timing.cpuMsFirst);
+      timed(second, frames[k], timing.msSecond, timing.cpuMsSecond);
     } else {
-      timed(second, frames[k], timing.msSecond);
-      timed(first, frames[k], timing.msFirst);
+      timed(second, frames[k], timing.msSecond, timing.cpuMsSecond);
+      timed(first, frames[k], timing.msFirst, timing.cpuMsFirst);
     }
   }
   return timing;

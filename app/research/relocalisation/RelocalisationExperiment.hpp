@@ -99,7 +99,8 @@ double poseCubeErrorPx(const PinholeCamera& camera, const RigidPose& truth,
 // (c): milliseconds of each frame a tracker gives a pose for, both trackers over `frames` in
 // order, frame by frame, taking turns at going first (both see the same machine load).
 struct TrackedFrameTiming {
-  std::vector<double> msFirst, msSecond;  // tracked frames only
+  std::vector<double> msFirst, msSecond;        // wall clock, tracked frames only
+  std::vector<double> cpuMsFirst, cpuMsSecond;  // thread CPU, the same frames
 };
 TrackedFrameTiming compareTrackedFrameMs(const std::vector<cv::Mat>& frames,
                                          const FrameTracker& first, const FrameTracker& second);
