@@ -139,13 +139,12 @@ struct CardScorer {
                                         (truth.poses[k]->cameraCentre() - r.cameraCentre()).norm());
     else
       f.referenceDistanceMm.assign(referencePoses.size(), NAN);
-    if (truth.corners[k] && truth.homographies[k] && truth.corners[0]) {
+    if (truth.corners[k] && truth.refinedCorners[k]) {
       f.cardCorners = *truth.corners[k];
-      std::vector<cv::Point2f> in(truth.corners[0]->begin(), truth.corners[0]->end()), carried;
-      cv::perspectiveTransform(in, carried, cv::Mat(*truth.homographies[k]));
       double worst = 0;
       for (std::size_t i = 0; i < 4; ++i)
-        worst = std::max(worst, static_cast<double>(cv::norm(carried[i] - f.cardCorners[i])));
+        worst = std::max(
+            worst, static_cast<double>(cv::norm((*truth.refinedCorners[k])[i] - f.cardCorners[i])));
       f.truthCornerShiftPx = worst;
     }
     return f;

@@ -52,9 +52,10 @@ struct RealFootageFrame {
   int corners = 0, matchesA = 0, matchesB = 0, threeView = 0, inliers = 0;
   double supportSdPx = NAN;
   // The truth's own consistency: the largest distance (px) between a card corner refined by
-  // cornerSubPix and where the followed homography carries frame 0's corner; NaN if not followed.
+  // cornerSubPix in this frame and where the followed homography carries frame 0's corner (the
+  // truth's); NaN if not followed.
   double truthCornerShiftPx = NAN;
-  std::array<cv::Point2f, 4> cardCorners{};  // the refined card corners (NaN if not followed)
+  std::array<cv::Point2f, 4> cardCorners{};  // the truth's card corners (NaN if not followed)
 };
 
 // One tracker over the clip.
