@@ -62,6 +62,7 @@ PlanarTargetTruth PlanarTargetTruth::follow(const std::vector<cv::Mat>& frames,
   const std::array<cv::Point2f, 4> corners0 = refined(frames[0], cornersInFirstFrame);
   HomographyTracker homography(frames[0], TrackerParams{});
   t.corners.assign(frames.size(), std::nullopt);
+  t.refinedCorners.assign(frames.size(), std::nullopt);
   t.homographies.assign(frames.size(), std::nullopt);
   for (std::size_t k = 0; k < frames.size(); ++k) {
     const HomographyTrackResult h = homography.track(frames[k]);
@@ -71,7 +72,8 @@ PlanarTargetTruth PlanarTargetTruth::follow(const std::vector<cv::Mat>& frames,
     cv::perspectiveTransform(in, out, cv::Mat(h.H));
     std::array<cv::Point2f, 4> c;
     std::copy(out.begin(), out.end(), c.begin());
-    t.corners[k] = refined(frames[k], c);
+    t.corners[k] = k == 0 ? corners0 : c;
+    t.refinedCorners[k] = k == 0 ? corners0 : refined(frames[k], c);
   }
   // The aspect ratio: a 0.005 grid search of the mean IPPE reprojection RMS over a spread of
   // frames (every 20th).

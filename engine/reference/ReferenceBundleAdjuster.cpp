@@ -21,15 +21,20 @@ std::unique_ptr<ceres::LossFunction> makeLoss(const BundleAdjustmentParams& p) {
   return nullptr;  // "none": plain least squares
 }
 
-// Undistorted corner pixels of every view (the corners are stored as detected).
-std::vector<std::vector<Eigen::Vector2d>> undistortedCorners(const MultiReferenceMap& map) {
-  std::vector<std::vector<Eigen::Vector2d>> out(map.views.size());
-  for (std::size_t v = 0; v < map.views.size(); ++v) {
-    std::vector<cv::Point2f> pixels;
-    pixels.reserve(map.views[v].corners.size());
-    for (const ReferenceCorner& c : map.views[v].corners) pixels.push_back(c.pixel);
-    for (const cv::Point2f& p : map.camera.undistortPixels(pixels)) out[v].emplace_back(p.x, p.y);
-  }
+// Undistorted measured pixel of every observation, per point in observation order: its
+// correlation peak (PointObservation::peak, the pixel the point was triangulated from), or its
+// corner where the map has none (MultiReferenceMap::measuredPixel; the pixels are stored as
+// detected, with lens distortion).
+std::vector<std::vector<Eigen::Vector2d>> undistortedMeasurements(const MultiReferenceMap& map) {
+  std::vector<cv::Point2f> pixels;
+  for (const MapPoint& p : map.points)
+    for (const PointObservation& o : p.observations) pixels.push_back(map.measuredPixel(o));
+  const std::vector<cv::Point2f> undistorted = map.camera.undistortPixels(pixels);
+  std::vector<std::vector<Eigen::Vector2d>> out(map.points.size());
+  std::size_t next = 0;
+  for (std::size_t i = 0; i < map.points.size(); ++i)
+    for (std::size_t k = 0; k < map.points[i].observations.size(); ++k, ++next)
+      out[i].emplace_back(undistorted[next].x, undistorted[next].y);
   return out;
 }
 
@@ -88,10 +93,10 @@ ReferenceBundleAdjuster::ReferenceBundleAdjuster(BundleAdjustmentParams params)
 }
 
 BundleAdjustmentReport ReferenceBundleAdjuster::adjust(MultiReferenceMap& map) const {
-  checkObservations(map);
   const std::size_t nViews = map.views.size();
   const Eigen::Matrix3d& K = map.camera.K();
-  const auto corners = undistortedCorners(map);
+  checkObservations(map);
+  const auto measured = undistortedMeasurements(map);
   const std::vector<bool> determined = determinedViews(map, params_.minDeterminedPoints);
 
   BundleAdjustmentReport report;
@@ -114,14 +119,15 @@ BundleAdjustmentReport ReferenceBundleAdjuster::adjust(MultiReferenceMap& map) c
   std::vector<Observation> observations;
   for (std::size_t i = 0; i < map.points.size(); ++i) {
     std::vector<Observation> ofPoint;
-    for (const PointObservation& o : map.points[i].observations) {
+    for (std::size_t k = 0; k < map.points[i].observations.size(); ++k) {
+      const PointObservation& o = map.points[i].observations[k];
       const auto v = static_cast<std::size_t>(o.view);
       if (!determined[v]) continue;
       if (!((map.views[v].T * points[i]).z() > 0.0)) {
         ++report.skippedBehindCamera;
         continue;
       }
-      const Eigen::Vector2d pixel = corners[v][static_cast<std::size_t>(o.corner)];
+      const Eigen::Vector2d& pixel = measured[i][k];
       ofPoint.push_back({static_cast<int>(i), o.view, pixel,
                          reprojectionError(K, map.views[v].T, points[i], pixel)});
     }

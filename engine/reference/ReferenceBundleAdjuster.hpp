@@ -3,8 +3,10 @@
 // MultiReferenceMap that refines the world->camera poses of the non-anchored references
 // (views[i].anchored == false, added from a video) and the 3D points, with the anchored
 // references (marker / given poses) held constant, so the world frame never moves.
-// Observations: every point's corner in every reference that sees it, undistorted through the
-// map's PinholeCamera; cost MapPointReprojectionCost under a robust loss (params.loss, scale
+// Observations: every point's measured pixel in every reference that sees it (its correlation
+// peak, the pixel it was triangulated from, or its corner where the map keeps no peak:
+// MultiReferenceMap::measuredPixel), undistorted through the map's PinholeCamera; cost
+// MapPointReprojectionCost under a robust loss (params.loss, scale
 // params.lossScalePx); single-threaded.
 // Gauge: with the anchored poses constant, a point seen by two anchored references is fixed by
 // them; a non-anchored reference is refined only when it sees at least params.minDeterminedPoints

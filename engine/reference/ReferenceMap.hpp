@@ -26,7 +26,7 @@ struct ReferenceMatch {
   Eigen::Vector3d pointA;          // triangulated 3D point in camera A's frame (metres)
   // Where the point was measured in A and B (pixels, with lens distortion): the correlation peaks
   // it was triangulated from (MultiReferenceMap's PointObservation::peak). None: the corner. Not
-  // written by save() (format 1); the tracker does not use them.
+  // written by save() (format 1); the tracker's epipolar terms measure the reference at them.
   std::optional<cv::Point2f> peakA{}, peakB{};
 };
 

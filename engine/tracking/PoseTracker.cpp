@@ -59,6 +59,10 @@ Eigen::Vector2d toEigen(cv::Point2f p) { return {p.x, p.y}; }
 struct PreparedReference {
   MatchableReference matchable;  // distorted pixels, for correlation
   std::vector<Eigen::Vector2d> undistorted;
+  // Where each corner's map point was measured (ReferenceMatch::peakA / peakB, undistorted): the
+  // correlation peak its 3D point was triangulated from, or the corner itself (no point, no peak).
+  // The epipolar terms use it, so that they measure the same scene point as the three-view terms.
+  std::vector<Eigen::Vector2d> measured;
   std::vector<float> contrast;
   std::vector<int> mapMatch;  // corner -> index into map.matches, or -1
   std::vector<Corner> asCorners;
@@ -77,11 +81,21 @@ PreparedReference prepare(const cv::Mat& image, const std::vector<ReferenceCorne
   }
   for (const cv::Point2f& p : camera.undistortPixels(pixels)) r.undistorted.push_back(toEigen(p));
   r.mapMatch.assign(corners.size(), -1);
+  r.measured = r.undistorted;
+  std::vector<cv::Point2f> peaks;
+  std::vector<std::size_t> peakCorners;
   for (int m = 0; m < static_cast<int>(matches.size()); ++m) {
-    const int c = isA ? matches[static_cast<std::size_t>(m)].cornerA
-                      : matches[static_cast<std::size_t>(m)].cornerB;
+    const ReferenceMatch& match = matches[static_cast<std::size_t>(m)];
+    const int c = isA ? match.cornerA : match.cornerB;
     r.mapMatch[static_cast<std::size_t>(c)] = m;
+    if (const std::optional<cv::Point2f>& peak = isA ? match.peakA : match.peakB) {
+      peaks.push_back(*peak);
+      peakCorners.push_back(static_cast<std::size_t>(c));
+    }
   }
+  const std::vector<cv::Point2f> undistortedPeaks = camera.undistortPixels(peaks);
+  for (std::size_t i = 0; i < peakCorners.size(); ++i)
+    r.measured[peakCorners[i]] = toEigen(undistortedPeaks[i]);
   r.gray = toGray8(image);
   // Corners with a 3D point are tried first: they carry the three-view terms.
   std::vector<char> hasPoint(corners.size(), 0);
@@ -521,7 +535,7 @@ PoseTrackingResult PoseTracker::Impl::process(const cv::Mat& frame) {
   };
   for (std::size_t i = 0; i < mA.size(); ++i) {
     const Eigen::Vector2d& pK = undist[static_cast<std::size_t>(mA[i].frameCorner)];
-    const Eigen::Vector2d& pRef = refA.undistorted[static_cast<std::size_t>(mA[i].referenceCorner)];
+    const Eigen::Vector2d& pRef = refA.measured[static_cast<std::size_t>(mA[i].referenceCorner)];
     if (maxEpipolarDistance(FA, pRef, pK) > gate) continue;
     inlierA[i] = 1;
     if (!useEpipolarA) continue;
@@ -531,7 +545,7 @@ PoseTrackingResult PoseTracker::Impl::process(const cv::Mat& frame) {
   }
   for (std::size_t i = 0; i < mB.size(); ++i) {
     const Eigen::Vector2d& pK = undist[static_cast<std::size_t>(mB[i].frameCorner)];
-    const Eigen::Vector2d& pRef = refB.undistorted[static_cast<std::size_t>(mB[i].referenceCorner)];
+    const Eigen::Vector2d& pRef = refB.measured[static_cast<std::size_t>(mB[i].referenceCorner)];
     if (maxEpipolarDistance(FB, pRef, pK) > gate) continue;
     inlierB[i] = 1;
     if (!useEpipolarB) continue;

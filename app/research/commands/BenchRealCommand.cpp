@@ -21,7 +21,7 @@ struct BenchRealArgs {
   std::filesystem::path clip = "../shared/data/planar-videos/video-postcard.mp4";
   RealFootageOptions options = RealFootageOptions::postcard({});
   std::vector<float> target;  // --target: 8 numbers, or empty for the postcard's corners
-  std::filesystem::path params, prepareParams, trajectory;
+  std::filesystem::path params, prepareParams, trajectory, framesCsv;
 };
 
 void printRun(const RealFootageRun& r) {
@@ -76,6 +76,10 @@ CommandRegistration registerBenchRealCommand(CLI::App& parent) {
   sub->add_flag("!--no-baseline", a->options.baseline, "Skip the ORB + PnP + Kalman baseline");
   sub->add_option("--trajectory", a->trajectory,
                   "Write reftrack's poses (TUM, world = the card; time = frame / fps)");
+  sub->add_option("--frames-csv", a->framesCsv,
+                  "Write one CSV row per frame of reftrack's first pass: state, pair, grid and "
+                  "cube error, distance from each reference, matches, inliers, the card's corners "
+                  "and the truth's own corner shift (refined vs followed homography), message");
   // Usage errors (exit 2): checked when the command line is parsed, before anything is read.
   sub->callback([a] {
     const std::vector<int>& refs = a->options.references;
@@ -110,6 +114,7 @@ CommandRegistration registerBenchRealCommand(CLI::App& parent) {
                                          : ReferencePreparerParams::load(a->prepareParams);
             const RealFootageResult r = runRealFootageBenchmark(o, params, prepareParams);
             if (!a->trajectory.empty()) r.reftrack.estimate.save(a->trajectory);
+            if (!a->framesCsv.empty()) writeRealFootageFramesCsv(r.reftrack, a->framesCsv);
             std::printf(
                 "%s: %d frames read, %dx%d; card followed in %d, aspect %.3f (PnP RMS %.2f px)\n",
                 o.clip.string().c_str(), r.clipFrames, r.frameSize.width, r.frameSize.height,

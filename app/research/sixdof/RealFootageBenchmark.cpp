@@ -2,11 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <iomanip>
 #include <opencv2/core.hpp>
 #include <opencv2/videoio.hpp>
 #include <set>
+#include <tuple>
 
 #include "app/research/baselines/OrbPnpKalmanTracker.hpp"
+#include "engine/core/AtomicFile.hpp"
 #include "engine/core/Error.hpp"
 #include "engine/core/ThreadCpuClock.hpp"
 #include "engine/evaluation/PlanarTargetTruth.hpp"
@@ -97,7 +101,11 @@ struct CardScorer {
       cube.emplace_back(v.x() + 0.5 * w, v.y() + 0.5 * h, up * v.z());
   }
 
-  void score(std::size_t k, const RigidPose& worldToCamera, RealFootageRun& run) const {
+  // Appends frame k's grid and cube errors of `worldToCamera` to `run`; returns them (NaN where
+  // the frame has no truth).
+  std::pair<double, double> score(std::size_t k, const RigidPose& worldToCamera,
+                                  RealFootageRun& run) const {
+    double gridError = NAN, cubeError = NAN;
     if (truth.homographies[k]) {
       std::vector<cv::Point2f> carried;
       cv::perspectiveTransform(gridInFrame0, carried, cv::Mat(*truth.homographies[k]));
@@ -106,14 +114,40 @@ struct CardScorer {
         const Eigen::Vector2d p = camera.project(worldToCamera, grid[i]);
         sum += std::hypot(p.x() - carried[i].x, p.y() - carried[i].y);
       }
-      run.gridErrorPx.push_back(sum / static_cast<double>(grid.size()));
+      gridError = sum / static_cast<double>(grid.size());
+      run.gridErrorPx.push_back(gridError);
     }
     if (truth.poses[k]) {
       double sum = 0;
       for (const Eigen::Vector3d& X : cube)
         sum += (camera.project(worldToCamera, X) - camera.project(*truth.poses[k], X)).norm();
-      run.cubeErrorPx.push_back(sum / static_cast<double>(cube.size()));
+      cubeError = sum / static_cast<double>(cube.size());
+      run.cubeErrorPx.push_back(cubeError);
     }
+    return {gridError, cubeError};
+  }
+
+  // RealFootageFrame's truth columns of frame k (distances to `referencePoses`' centres, the
+  // refined corners and how far they lie from the homography's).
+  RealFootageFrame truthOf(std::size_t k, const std::vector<RigidPose>& referencePoses) const {
+    RealFootageFrame f;
+    f.frame = static_cast<int>(k);
+    f.cardCorners.fill(cv::Point2f(NAN, NAN));
+    if (truth.poses[k])
+      for (const RigidPose& r : referencePoses)
+        f.referenceDistanceMm.push_back(1000.0 *
+                                        (truth.poses[k]->cameraCentre() - r.cameraCentre()).norm());
+    else
+      f.referenceDistanceMm.assign(referencePoses.size(), NAN);
+    if (truth.corners[k] && truth.refinedCorners[k]) {
+      f.cardCorners = *truth.corners[k];
+      double worst = 0;
+      for (std::size_t i = 0; i < 4; ++i)
+        worst = std::max(
+            worst, static_cast<double>(cv::norm((*truth.refinedCorners[k])[i] - f.cardCorners[i])));
+      f.truthCornerShiftPx = worst;
+    }
+    return f;
   }
 };
 
@@ -187,13 +221,27 @@ RealFootageResult runRealFootageBenchmark(const RealFootageOptions& o, const Tra
         if (ok) run.trackedCpuMs.push_back(cpu);
         if (!first) continue;
         for (const StageTiming& st : r.timings) run.stageMs[st.stage].push_back(st.ms);
+        RealFootageFrame f = scorer.truthOf(static_cast<std::size_t>(k), poses);
+        f.state = toString(r.state);
+        f.message = r.message;
+        f.referenceA = m.referenceA;
+        f.referenceB = m.referenceB;
+        f.corners = r.corners;
+        f.matchesA = r.matchesA;
+        f.matchesB = r.matchesB;
+        f.threeView = r.threeView;
+        f.inliers = r.inliers;
+        if (ok) f.supportSdPx = r.supportSdPx;
         if (!ok) {
           ++run.noPose[r.message.substr(0, r.message.find(" ("))];
+          run.perFrame.push_back(std::move(f));
           continue;
         }
         ++run.tracked;
         run.estimate.poses.push_back({k / clip.fps, *r.worldToCamera});
-        scorer.score(static_cast<std::size_t>(k), *r.worldToCamera, run);
+        std::tie(f.gridErrorPx, f.cubeErrorPx) =
+            scorer.score(static_cast<std::size_t>(k), *r.worldToCamera, run);
+        run.perFrame.push_back(std::move(f));
         result.rollingShutterReadout = r.rollingShutterReadout;
       }
     }
@@ -218,6 +266,33 @@ RealFootageResult runRealFootageBenchmark(const RealFootageOptions& o, const Tra
     }
   }
   return result;
+}
+
+void writeRealFootageFramesCsv(const RealFootageRun& run, const std::filesystem::path& file) {
+  writeFileAtomically(file, [&](const std::filesystem::path& tmp) {
+    std::ofstream out(tmp);
+    if (!out) throw Error("cannot write '" + file.string() + "'");
+    const std::size_t references =
+        run.perFrame.empty() ? 0 : run.perFrame[0].referenceDistanceMm.size();
+    out << "frame,state,reference_a,reference_b,grid_px,cube_px";
+    for (std::size_t r = 0; r < references; ++r) out << ",distance_ref" << r << "_mm";
+    out << ",corners,matches_a,matches_b,three_view,inliers,support_sd_px,truth_corner_shift_px";
+    for (int c = 0; c < 4; ++c) out << ",card_x" << c << ",card_y" << c;
+    out << ",message\n";
+    out << std::setprecision(10);
+    for (const RealFootageFrame& f : run.perFrame) {
+      out << f.frame << ',' << f.state << ',' << f.referenceA << ',' << f.referenceB << ','
+          << f.gridErrorPx << ',' << f.cubeErrorPx;
+      for (double d : f.referenceDistanceMm) out << ',' << d;
+      out << ',' << f.corners << ',' << f.matchesA << ',' << f.matchesB << ',' << f.threeView << ','
+          << f.inliers << ',' << f.supportSdPx << ',' << f.truthCornerShiftPx;
+      for (const cv::Point2f& c : f.cardCorners) out << ',' << c.x << ',' << c.y;
+      std::string message = f.message;
+      std::replace(message.begin(), message.end(), '"', '\'');
+      out << ",\"" << message << "\"\n";
+    }
+    if (!out.flush()) throw Error("cannot write '" + file.string() + "'");
+  });
 }
 
 }  // namespace reftrack::app

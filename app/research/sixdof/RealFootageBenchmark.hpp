@@ -10,6 +10,7 @@
 // through the card's PnP pose. Speed: thread CPU time per tracked frame, every pass alternating
 // the two trackers so both see the same machine load.
 #include <array>
+#include <cmath>
 #include <filesystem>
 #include <map>
 #include <optional>
@@ -39,6 +40,24 @@ struct RealFootageOptions {
   void check() const;  // throws reftrack::Error naming the bad option
 };
 
+// One frame of reftrack's first pass, for the per-frame CSV (`bench-real --frames-csv`).
+struct RealFootageFrame {
+  int frame = 0;
+  std::string state, message;                   // PoseTrackingResult's state and message
+  int referenceA = -1, referenceB = -1;         // the pair in use (-1: none)
+  double gridErrorPx = NAN, cubeErrorPx = NAN;  // NaN: no pose or no truth
+  // Distance (mm) of the card's camera centre from each reference's, in the card's poses; NaN
+  // where the card was not followed.
+  std::vector<double> referenceDistanceMm;
+  int corners = 0, matchesA = 0, matchesB = 0, threeView = 0, inliers = 0;
+  double supportSdPx = NAN;
+  // The truth's own consistency: the largest distance (px) between a card corner refined by
+  // cornerSubPix in this frame and where the followed homography carries frame 0's corner (the
+  // truth's); NaN if not followed.
+  double truthCornerShiftPx = NAN;
+  std::array<cv::Point2f, 4> cardCorners{};  // the truth's card corners (NaN if not followed)
+};
+
 // One tracker over the clip.
 struct RealFootageRun {
   std::string name;
@@ -49,6 +68,7 @@ struct RealFootageRun {
   std::map<std::string, std::vector<double>> stageMs;  // PoseTracker stages (wall), first pass
   std::map<std::string, int> noPose;                   // reason -> frames (first pass)
   TumTrajectory estimate;  // first pass, tracked frames (timestamp: frame index / clip fps)
+  std::vector<RealFootageFrame> perFrame;  // first pass, every frame (reftrack only)
   double trackedPercent() const { return frames > 0 ? 100.0 * tracked / frames : 0.0; }
 };
 
@@ -72,5 +92,8 @@ RealFootageResult runRealFootageBenchmark(const RealFootageOptions& options,
 
 // The q-quantile (q in [0, 1], linear interpolation) of `values`; NaN when empty.
 double percentileOf(std::vector<double> values, double q);
+
+// Writes run.perFrame as CSV (one row per frame, header first), atomically.
+void writeRealFootageFramesCsv(const RealFootageRun& run, const std::filesystem::path& file);
 
 }  // namespace reftrack::app

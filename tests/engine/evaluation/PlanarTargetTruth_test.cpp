@@ -94,11 +94,15 @@ TEST(PlanarTargetTruth, RecoversTheCardsPosesAndAspectFromRoughCorners) {
     ASSERT_TRUE(t.poses[k].has_value()) << "frame " << k << " not followed";
     ASSERT_TRUE(t.homographies[k].has_value());
     const RigidPose truth = framePose(static_cast<int>(k));
-    // Corners of the bilinearly rendered card: cornerSubPix finds them to < 0.5 px.
+    // Corners of the bilinearly rendered card: cornerSubPix finds them to < 0.5 px, in frame 0
+    // (then carried by the homography) and in each frame.
+    ASSERT_TRUE(t.refinedCorners[k].has_value());
     for (int i = 0; i < 4; ++i) {
       const Eigen::Vector2d p = camera().project(truth, card[static_cast<std::size_t>(i)]);
       const cv::Point2f c = (*t.corners[k])[static_cast<std::size_t>(i)];
       EXPECT_LT(std::hypot(c.x - p.x(), c.y - p.y()), 0.5) << "frame " << k << " corner " << i;
+      const cv::Point2f r = (*t.refinedCorners[k])[static_cast<std::size_t>(i)];
+      EXPECT_LT(std::hypot(r.x - p.x(), r.y - p.y()), 0.5) << "frame " << k << " corner " << i;
     }
     std::vector<cv::Point2f> carried;
     cv::perspectiveTransform(std::vector<cv::Point2f>{cv::Point2f(static_cast<float>(centre0.x()),

@@ -177,6 +177,33 @@ TEST(ReferenceBundleAdjuster, PerturbedAddedReferencesReturnToTheTruthAnchoredOn
   EXPECT_DOUBLE_EQ(r.views[0].movedMetres, 0.0);
 }
 
+TEST(ReferenceBundleAdjuster, FitsTheObservationsPeaksNotTheirCorners) {
+  // The exact projections are the peaks; every corner lies 1 px off its peak (as a corner of a
+  // real map may, up to matching.max_peak_offset_px). The truth fits the peaks exactly, so the
+  // adjustment must return the perturbed added references to it, as with exact corners.
+  SyntheticScene s;
+  MultiReferenceMap map = s.map;
+  for (MapPoint& p : map.points)
+    for (PointObservation& o : p.observations) {
+      cv::Point2f& corner = map.views[static_cast<std::size_t>(o.view)]
+                                .corners[static_cast<std::size_t>(o.corner)]
+                                .pixel;
+      o.peak = corner;
+      corner += cv::Point2f(0.8f, -0.6f);
+    }
+  std::mt19937 rng(23);
+  map.views[2].T = perturbed(s.truth[2], 0.02, 1.0, rng);
+  map.views[3].T = perturbed(s.truth[3], 0.02, 1.0, rng);
+  const BundleAdjustmentReport r = ReferenceBundleAdjuster().adjust(map);
+  // Same bounds as with exact corners (solver tolerance); fitting the corners instead leaves the
+  // added references off by the 1 px shift's worth of pose.
+  for (int v : {2, 3}) {
+    EXPECT_LT(RigidPose::translationDistance(map.views[v].T, s.truth[v]), 1e-5) << v;
+    EXPECT_LT(RigidPose::rotationDistance(map.views[v].T, s.truth[v]) / kDeg, 1e-4) << v;
+  }
+  EXPECT_LT(r.finalRmsPx, 1e-4);
+}
+
 TEST(ReferenceBundleAdjuster, UndeterminedAddedReferencesAreHeldNotFloated) {
   // Views 4 and 5 share points only with each other: nothing ties their pose or scale to the
   // anchored frame, so the gauge rule holds them (and their points) exactly where they are.

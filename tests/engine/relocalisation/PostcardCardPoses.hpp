@@ -2,9 +2,9 @@
 // The postcard clip (../shared/data/planar-videos/video-postcard.mp4, 161 frames, 640x480, K
 // guessed as fx = fy = 840 at the centre) with a pose per frame from the card's corners (the
 // real-footage tests' ground truth, engine/evaluation/PlanarTargetTruth): corners clicked on
-// frame 0, followed by the homography tracker, refined by cornerSubPix; the card is a rectangle
-// of short side 0.105 m whose aspect ratio fits the corners best; solvePnP (IPPE) gives each
-// frame's world->camera pose.
+// frame 0 and refined there by cornerSubPix, carried by the homography tracker; the card is a
+// rectangle of short side 0.105 m whose aspect ratio fits the corners best; solvePnP (IPPE) gives
+// each frame's world->camera pose.
 #include <array>
 #include <opencv2/videoio.hpp>
 #include <optional>
