@@ -5,9 +5,9 @@
 // its residuals at the tracked pose are linear in the readout; the pose's six degrees of freedom
 // are projected out of them (a Schur complement), leaving what no pose explains. Frames without
 // motion carry no information and change nothing. Recursive weighted least squares over the
-// informative frames (older ones fading): from `minFrames` of them on, the readout follows their
-// solution, shrunk towards the start value by how uncertain it still is, clamped to [0, 1]; a
-// global-shutter camera stays at about 0.
+// informative frames (older ones fading): from `minFrames` of them on, once their solution differs
+// from the start value significantly, the readout follows it, shrunk towards the start value by
+// how uncertain it still is, clamped to [0, 1]; a global-shutter camera stays at 0.
 #include <Eigen/Core>
 #include <vector>
 
@@ -42,6 +42,7 @@ class RollingShutterEstimator {
   double dof_ = 0.0;
   int frames_ = 0;
   int updates_ = 0;
+  bool engaged_ = false;  // the data have shown the start value wrong
   double sd_ = 0.0;
 };
 
