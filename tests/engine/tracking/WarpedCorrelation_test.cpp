@@ -112,7 +112,6 @@ TEST(WarpedCorrelation, SampledWindowAgreesWithTheExactWarp) {
   }
 }
 
-
 // The matcher samples the 8-bit reference (a quarter of the memory of its float copy): the
 // windows are bit for bit those of the float copy, for the strong warp and a tracking one.
 TEST(WarpedCorrelation, EightBitReferenceGivesTheFloatCopysWindowsExactly) {
