@@ -120,12 +120,15 @@ cv::Mat toGray8(const cv::Mat& image) {
 CornerDetector::CornerDetector(CornerParams params) : params_(params) { params_.check(); }
 
 std::vector<Corner> CornerDetector::detect(const cv::Mat& image) const {
-  const cv::Mat gray = toGray8(image);
+  return detect(ImagePyramid(toGray8(image)));
+}
+
+std::vector<Corner> CornerDetector::detect(const ImagePyramid& pyramid) const {
+  const cv::Mat& gray = pyramid.image();
   const cv::Size size = gray.size();
   const int count = params_.countFor(size);
   const int level = pyramidLevelFor(size, params_.detectAtPaperScale);
-  cv::Mat work = gray;
-  for (int l = 0; l < level; ++l) cv::pyrDown(work, work);
+  const cv::Mat& work = pyramid.level(level);
   const float toFull = static_cast<float>(1 << level);
   // cv::pyrDown filters around the even pixels: level pixel u sits at full-resolution 2^level u.
 

@@ -10,6 +10,7 @@
 
 #include "engine/config/CornerParams.hpp"
 #include "engine/features/Corner.hpp"
+#include "engine/features/ImagePyramid.hpp"
 
 namespace reftrack {
 
@@ -22,6 +23,9 @@ class CornerDetector {
   // threshold adapts to the image and is remembered for the next call (so one detector must not
   // be used from two threads at once).
   std::vector<Corner> detect(const cv::Mat& image) const;
+  // The same on an 8-bit grey image's pyramid, whose level the detection works on is then built
+  // once for every user of the pyramid (the homography refiner aligns on the same level).
+  std::vector<Corner> detect(const ImagePyramid& pyramid) const;
 
   const CornerParams& params() const { return params_; }
 

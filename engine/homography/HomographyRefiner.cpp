@@ -48,12 +48,6 @@ int alignmentLevel(cv::Size size) {
   return level;
 }
 
-cv::Mat pyramidLevel(const cv::Mat& image, int level) {
-  cv::Mat out = image;
-  for (int l = 0; l < level; ++l) cv::pyrDown(out, out);
-  return out;
-}
-
 double cornerShift(const cv::Matx33d& a, const cv::Matx33d& b, cv::Size size) {
   double worst = 0;
   for (const cv::Point2d c :
@@ -75,7 +69,7 @@ HomographyRefiner::HomographyRefiner(const cv::Mat& referenceGray, int pointsAt3
   if (referenceGray.empty()) throw Error("homography refiner: the reference image is empty");
   if (pointsAt320x240 < 8) throw Error("homography refiner: at least 8 points are needed");
   level_ = alignmentLevel(referenceGray.size());
-  reference_ = pyramidLevel(toGray8(referenceGray), level_);
+  reference_ = ImagePyramid(toGray8(referenceGray)).level(level_);
   CornerParams c;
   c.countAt320x240 = pointsAt320x240;
   c.quality = kPointQuality;
@@ -101,12 +95,16 @@ RefinedHomography HomographyRefiner::refine(const cv::Mat& frameGray, const cv::
                                             int minInliers, RefineStart start) const {
   if (frameGray.empty() || frameGray.type() != CV_8UC1)
     throw Error("homography refiner: the frame must be a non-empty 8-bit grey image");
-  if (level_ == 0) return refineOnLevel(frameGray, H, minInliers, start);
+  return refine(ImagePyramid(frameGray), H, minInliers, start);
+}
+
+RefinedHomography HomographyRefiner::refine(const ImagePyramid& frame, const cv::Matx33d& H,
+                                            int minInliers, RefineStart start) const {
+  if (level_ == 0) return refineOnLevel(frame.image(), H, minInliers, start);
   // On the pyramid level: H_level = S^-1 H S with S = diag(2^level, 2^level, 1).
   const double f = static_cast<double>(1 << level_);
   const cv::Matx33d S(f, 0, 0, 0, f, 0, 0, 0, 1), Sinv(1 / f, 0, 0, 0, 1 / f, 0, 0, 0, 1);
-  RefinedHomography r =
-      refineOnLevel(pyramidLevel(frameGray, level_), Sinv * H * S, minInliers, start);
+  RefinedHomography r = refineOnLevel(frame.level(level_), Sinv * H * S, minInliers, start);
   r.H = r.success ? S * r.H * Sinv : H;
   return r;
 }

@@ -15,6 +15,8 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
+#include "engine/features/ImagePyramid.hpp"
+
 namespace reftrack {
 
 // How far the start may be from the truth: Coarse (a few pixels: a keypoint homography) runs the
@@ -41,6 +43,9 @@ class HomographyRefiner {
   // reference points land. Fails (success = false, H unchanged) when fewer than minInliers points
   // support the fit or the fit diverges.
   RefinedHomography refine(const cv::Mat& frameGray, const cv::Matx33d& H, int minInliers,
+                           RefineStart start = RefineStart::Coarse) const;
+  // The same on the frame's pyramid (its level() is built once for every user of the pyramid).
+  RefinedHomography refine(const ImagePyramid& frame, const cv::Matx33d& H, int minInliers,
                            RefineStart start = RefineStart::Coarse) const;
 
   const std::vector<cv::Point2f>& points() const { return points_; }  // full-resolution pixels

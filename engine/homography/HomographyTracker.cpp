@@ -176,15 +176,16 @@ std::optional<cv::Matx33d> HomographyTracker::predict(const cv::Matx33d& base, b
   return f2f.H * base;
 }
 
-HomographyTracker::Attempt HomographyTracker::attempt(const cv::Mat& gray,
+HomographyTracker::Attempt HomographyTracker::attempt(const ImagePyramid& frame,
                                                       const CornerDetector& detector,
                                                       const ReferenceSet& ref,
                                                       const std::optional<cv::Matx33d>& base,
                                                       bool coasting, double stageMs[kStages],
                                                       bool chainFrameToFrame, int denseRadius) {
+  const cv::Mat& gray = frame.image();
   Attempt a;
   auto clock = std::chrono::steady_clock::now();
-  a.points = positionsOf(detector.detect(gray));
+  a.points = positionsOf(detector.detect(frame));
   a.patches = NccPatches::square(gray, a.points, params_.correlation.halfWindow);
   stageMs[0] += lap(clock);
 
@@ -359,10 +360,12 @@ void HomographyTracker::matchAndFit(Attempt& a, const cv::Mat& gray, const Refer
   stageMs[3] += lap(clock);
 }
 
-void HomographyTracker::refine(Attempt& a, const cv::Mat& gray, double stageMs[kStages]) const {
+void HomographyTracker::refine(Attempt& a, const ImagePyramid& frame,
+                               double stageMs[kStages]) const {
+  const cv::Mat& gray = frame.image();
   auto clock = std::chrono::steady_clock::now();
   const RefinedHomography r =
-      refiner_->refine(gray, a.est.H, params_.ransac.minInliers, RefineStart::Close);
+      refiner_->refine(frame, a.est.H, params_.ransac.minInliers, RefineStart::Close);
   // Kept only where it agrees with the fit it started from: its transfer error on that fit's
   // inliers within the inlier threshold (RMS), so a refinement that slid off cannot replace it.
   if (r.success) {
@@ -380,9 +383,10 @@ void HomographyTracker::refine(Attempt& a, const cv::Mat& gray, double stageMs[k
   stageMs[5] += lap(clock);
 }
 
-HomographyTracker::Attempt HomographyTracker::coldAttempt(const cv::Mat& gray,
+HomographyTracker::Attempt HomographyTracker::coldAttempt(const ImagePyramid& frame,
                                                           double stageMs[kStages],
                                                           bool& keypointGuided) {
+  const cv::Mat& gray = frame.image();
   keypointGuided = false;
   std::string keypointFailure;
   if (keypointRegistrar_) {
@@ -401,14 +405,14 @@ HomographyTracker::Attempt HomographyTracker::coldAttempt(const cv::Mat& gray,
       cv::Matx33d guide = k.H;
       if (refiner_) {
         auto refineClock = std::chrono::steady_clock::now();
-        const RefinedHomography r = refiner_->refine(gray, k.H, params_.ransac.minInliers);
+        const RefinedHomography r = refiner_->refine(frame, k.H, params_.ransac.minInliers);
         if (r.success) guide = r.H;
         stageMs[5] += lap(refineClock);
       }
-      Attempt a = attempt(gray, frameDetector_, ref_, guide, false, stageMs, false, radius);
+      Attempt a = attempt(frame, frameDetector_, ref_, guide, false, stageMs, false, radius);
       if (!a.tracked) {
         Attempt dense =
-            attempt(gray, reacquireDetector_, reacquireRef_, guide, false, stageMs, false, radius);
+            attempt(frame, reacquireDetector_, reacquireRef_, guide, false, stageMs, false, radius);
         if (dense.tracked) a = std::move(dense);
       }
       if (a.tracked) {
@@ -420,7 +424,7 @@ HomographyTracker::Attempt HomographyTracker::coldAttempt(const cv::Mat& gray,
       keypointFailure = "keypoints: " + k.failure;
     }
   }
-  Attempt a = attempt(gray, reacquireDetector_, reacquireRef_, std::nullopt, false, stageMs);
+  Attempt a = attempt(frame, reacquireDetector_, reacquireRef_, std::nullopt, false, stageMs);
   if (!a.tracked && !keypointFailure.empty())
     a.failure = keypointFailure + "; unguided: " + a.failure;
   return a;
@@ -432,6 +436,7 @@ HomographyTrackResult HomographyTracker::track(const cv::Mat& frame) {
     throw Error("homography tracker: frame is " + std::to_string(gray.cols) + "x" +
                 std::to_string(gray.rows) + " but the reference is " +
                 std::to_string(refGray_.cols) + "x" + std::to_string(refGray_.rows));
+  const ImagePyramid pyramid(gray);  // its levels are shared by the corners and the refinement
   double stageMs[kStages] = {0, 0, 0, 0, 0, 0};
   bool keypointGuided = false;
   // While tracking (or coasting after a loss): the reference's corners matched around their
@@ -440,14 +445,14 @@ HomographyTrackResult HomographyTracker::track(const cv::Mat& frame) {
   const bool coasting = !lastH_.has_value();
   const std::optional<cv::Matx33d> base = lastH_ ? lastH_ : coastH_;
   Attempt a;
-  if (base) a = attempt(gray, frameDetector_, ref_, base, coasting, stageMs);
+  if (base) a = attempt(pyramid, frameDetector_, ref_, base, coasting, stageMs);
   if (!a.tracked && a.prediction) {
     // A frame that shares only a sliver with the reference holds few of the tracking corners:
     // the denser re-acquisition sets are matched around the same prediction (measured on a
     // 0.5 degree-per-frame pan, 33 degree view, 320x240: without this, every other frame from
     // 22 degrees on was lost, its successor re-acquired unguided).
     Attempt dense =
-        attempt(gray, reacquireDetector_, reacquireRef_, a.prediction, coasting, stageMs, false);
+        attempt(pyramid, reacquireDetector_, reacquireRef_, a.prediction, coasting, stageMs, false);
     if (dense.tracked) a = std::move(dense);
   }
   std::optional<cv::Matx33d> coastNext;
@@ -465,12 +470,12 @@ HomographyTrackResult HomographyTracker::track(const cv::Mat& frame) {
       // unguided attempt does not replace them.
       prevPoints_ = std::move(a.points);
       prevPatches_ = std::move(a.patches);
-      a = coldAttempt(gray, stageMs, keypointGuided);
+      a = coldAttempt(pyramid, stageMs, keypointGuided);
       cold = true;
     }
   }
 
-  if (a.tracked && refiner_ && !a.rotationModel) refine(a, gray, stageMs);
+  if (a.tracked && refiner_ && !a.rotationModel) refine(a, pyramid, stageMs);
 
   HomographyTrackResult out;
   out.tracked = a.tracked;

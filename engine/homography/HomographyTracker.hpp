@@ -114,9 +114,9 @@ class HomographyTracker {
     bool tracked = false;
     std::string failure;
   };
-  Attempt attempt(const cv::Mat& gray, const CornerDetector& detector, const ReferenceSet& ref,
-                  const std::optional<cv::Matx33d>& base, bool coasting, double stageMs[kStages],
-                  bool chainFrameToFrame = true, int denseRadius = 0);
+  Attempt attempt(const ImagePyramid& frame, const CornerDetector& detector,
+                  const ReferenceSet& ref, const std::optional<cv::Matx33d>& base, bool coasting,
+                  double stageMs[kStages], bool chainFrameToFrame = true, int denseRadius = 0);
   // Matches the attempt's frame corners to `ref` — around the positions `guide` predicts
   // (warped windows, +-guidedHalf pixels), or unguided — then fits H (the general model, then
   // the rotation model) and applies the inlier rules. stageMs[2..3] accumulate. denseRadius > 0:
@@ -127,9 +127,9 @@ class HomographyTracker {
                    double stageMs[kStages], int denseRadius = 0) const;
   // The registered attempt's H refined by refiner_ (kept when it still fits the attempt's
   // inliers); stageMs[5] accumulates.
-  void refine(Attempt& a, const cv::Mat& gray, double stageMs[kStages]) const;
+  void refine(Attempt& a, const ImagePyramid& frame, double stageMs[kStages]) const;
   // Registration without a prediction: around the keypoint layer's homography, then unguided.
-  Attempt coldAttempt(const cv::Mat& gray, double stageMs[kStages], bool& keypointGuided);
+  Attempt coldAttempt(const ImagePyramid& frame, double stageMs[kStages], bool& keypointGuided);
 
   TrackerParams params_;
   CornerDetector detector_;           // the reference's tracking corners

@@ -60,11 +60,19 @@ cv::Matx33d refineHomography(const cv::Matx33d& H, const std::vector<cv::Point2f
   using Mat8 = Eigen::Matrix<double, 8, 8>;
   Vec8 h;
   h << Hn(0, 0), Hn(0, 1), Hn(0, 2), Hn(1, 0), Hn(1, 1), Hn(1, 2), Hn(2, 0), Hn(2, 1);
-  // Sum of squared residuals; with JtJ/Jtr when asked.
+  // Sum of squared residuals; with JtJ (lower triangle) and Jtr when asked. With a = (x, y, 1) / w
+  // the two Jacobian rows are (a, 0, -px a_xy) and (0, a, -py a_xy): JtJ has the blocks
+  // S = sum wk a a^T (twice on the diagonal), -sum wk px a a_xy^T, -sum wk py a a_xy^T and
+  // sum wk (px^2 + py^2) a_xy a_xy^T, so 21 products per point are summed instead of two dense
+  // 8x8 rank updates (measured with callgrind on bench-homography 1280x720 frames: the rank
+  // updates were 17% of a tracked frame's instructions, through HomographyRefiner).
   const auto evaluate = [&pts, &w](const Vec8& p, Mat8* JtJ, Vec8* Jtr) {
     double cost = 0;
-    if (JtJ) JtJ->setZero();
-    if (Jtr) Jtr->setZero();
+    double s00 = 0, s01 = 0, s02 = 0, s11 = 0, s12 = 0, s22 = 0;  // S
+    double x00 = 0, x01 = 0, x11 = 0, x20 = 0, x21 = 0;           // sum wk px a_i a_k
+    double y00 = 0, y01 = 0, y11 = 0, y20 = 0, y21 = 0;           // sum wk py a_i a_k
+    double q00 = 0, q01 = 0, q11 = 0;                             // sum wk (px^2+py^2) a_k a_l
+    double g0 = 0, g1 = 0, g2 = 0, g3 = 0, g4 = 0, g5 = 0, g6 = 0, g7 = 0;  // Jtr
     for (size_t k = 0; k < pts.size(); ++k) {
       const Eigen::Vector4d& q = pts[k];
       const double wk = w[k];
@@ -77,12 +85,57 @@ cv::Matx33d refineHomography(const cv::Matx33d& H, const std::vector<cv::Point2f
       const double rx = px - q(2), ry = py - q(3);
       cost += wk * (rx * rx + ry * ry);
       if (!JtJ) continue;
-      Vec8 jx, jy;
-      jx << x * iw, y * iw, iw, 0, 0, 0, -px * x * iw, -px * y * iw;
-      jy << 0, 0, 0, x * iw, y * iw, iw, -py * x * iw, -py * y * iw;
-      JtJ->selfadjointView<Eigen::Lower>().rankUpdate(jx, wk);
-      JtJ->selfadjointView<Eigen::Lower>().rankUpdate(jy, wk);
-      *Jtr += wk * (jx * rx + jy * ry);
+      const double a0 = x * iw, a1 = y * iw, a2 = iw;
+      const double w0 = wk * a0, w1 = wk * a1, w2 = wk * a2;
+      const double s00k = w0 * a0, s01k = w0 * a1, s11k = w1 * a1;
+      s00 += s00k;
+      s01 += s01k;
+      s02 += w0 * a2;
+      s11 += s11k;
+      s12 += w1 * a2;
+      s22 += w2 * a2;
+      const double s20k = w2 * a0, s21k = w2 * a1;
+      x00 += px * s00k;
+      x01 += px * s01k;
+      x11 += px * s11k;
+      x20 += px * s20k;
+      x21 += px * s21k;
+      y00 += py * s00k;
+      y01 += py * s01k;
+      y11 += py * s11k;
+      y20 += py * s20k;
+      y21 += py * s21k;
+      const double rr = px * px + py * py;
+      q00 += rr * s00k;
+      q01 += rr * s01k;
+      q11 += rr * s11k;
+      g0 += w0 * rx;
+      g1 += w1 * rx;
+      g2 += w2 * rx;
+      g3 += w0 * ry;
+      g4 += w1 * ry;
+      g5 += w2 * ry;
+      const double e = px * rx + py * ry;
+      g6 -= w0 * e;
+      g7 -= w1 * e;
+    }
+    if (JtJ) {
+      Mat8& A = *JtJ;
+      A.setZero();
+      // Lower triangle, row by row.
+      A(0, 0) = s00;
+      A(1, 0) = s01, A(1, 1) = s11;
+      A(2, 0) = s02, A(2, 1) = s12, A(2, 2) = s22;
+      A(3, 3) = s00;
+      A(4, 3) = s01, A(4, 4) = s11;
+      A(5, 3) = s02, A(5, 4) = s12, A(5, 5) = s22;
+      A(6, 0) = -x00, A(6, 1) = -x01, A(6, 2) = -x20;
+      A(7, 0) = -x01, A(7, 1) = -x11, A(7, 2) = -x21;
+      A(6, 3) = -y00, A(6, 4) = -y01, A(6, 5) = -y20;
+      A(7, 3) = -y01, A(7, 4) = -y11, A(7, 5) = -y21;
+      A(6, 6) = q00;
+      A(7, 6) = q01, A(7, 7) = q11;
+      *Jtr << g0, g1, g2, g3, g4, g5, g6, g7;
     }
     return cost;
   };

@@ -1,6 +1,8 @@
 #include "engine/matching/NccCorrelation.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "engine/core/Error.hpp"
 
@@ -75,31 +77,67 @@ NccPatches NccPatches::warped(const cv::Mat& gray, const std::vector<cv::Point2f
   const int n = static_cast<int>(centres.size());
   out.data_.assign(static_cast<size_t>(n) * out.stride_, 0.0f);
   out.valid_.assign(static_cast<size_t>(n), 1);
-  const int h = halfWindow;
+  const int h = halfWindow, side = 2 * h + 1, cells = side * side;
   const float maxX = static_cast<float>(gray.cols - 1), maxY = static_cast<float>(gray.rows - 1);
+  // The window's offsets (u, v) and per-pixel scratch: the affine map's image of the window is a
+  // parallelogram, inside the image when its four corners are, so the pixels need no bounds test
+  // and the coordinate and interpolation loops vectorise (the per-pixel scalar loop was ~8% of a
+  // tracked 1280x720 homography frame: callgrind, bench-homography frames). The same samples.
+  thread_local std::vector<float> du, dv, xs, ys, p00, p01, p10, p11;
+  thread_local std::vector<int> offset;
+  for (auto* v : {&du, &dv, &xs, &ys, &p00, &p01, &p10, &p11})
+    v->resize(static_cast<size_t>(cells));
+  offset.resize(static_cast<size_t>(cells));
+  for (int k = 0; k < cells; ++k) {
+    du[static_cast<size_t>(k)] = static_cast<float>(k % side - h);
+    dv[static_cast<size_t>(k)] = static_cast<float>(k / side - h);
+  }
+  const int step = static_cast<int>(gray.step[0]);
   for (int i = 0; i < n; ++i) {
     const cv::Matx22f& A = maps[static_cast<size_t>(i)];
     const cv::Point2f c = centres[static_cast<size_t>(i)];
     float* p = out.data_.data() + static_cast<size_t>(i) * out.stride_;
     bool inside = std::isfinite(c.x) && std::isfinite(c.y);
-    for (int v = -h; v <= h && inside; ++v) {
-      for (int u = -h; u <= h; ++u) {
-        const float x = c.x + A(0, 0) * u + A(0, 1) * v;
-        const float y = c.y + A(1, 0) * u + A(1, 1) * v;
-        if (!(x >= 0 && y >= 0 && x < maxX && y < maxY)) {
-          inside = false;
-          break;
-        }
-        const int x0 = static_cast<int>(x), y0 = static_cast<int>(y);
-        const float fx = x - x0, fy = y - y0;
-        const uchar* r0 = gray.ptr<uchar>(y0) + x0;
-        const uchar* r1 = gray.ptr<uchar>(y0 + 1) + x0;
-        *p++ = (1 - fy) * ((1 - fx) * r0[0] + fx * r0[1]) + fy * ((1 - fx) * r1[0] + fx * r1[1]);
-      }
+    for (int k = 0; k < 4 && inside; ++k) {
+      const float u = static_cast<float>((k & 1) ? h : -h),
+                  v = static_cast<float>((k & 2) ? h : -h);
+      const float x = c.x + A(0, 0) * u + A(0, 1) * v;
+      const float y = c.y + A(1, 0) * u + A(1, 1) * v;
+      inside = x >= 0 && y >= 0 && x < maxX && y < maxY;
     }
     if (!inside) {
       out.valid_[static_cast<size_t>(i)] = 0;
       continue;
+    }
+    const float a00 = A(0, 0), a01 = A(0, 1), a10 = A(1, 0), a11 = A(1, 1);
+    // Clamped just inside: rounding may put an edge pixel a hair past a corner's bound.
+    const float lastX = std::nextafter(maxX, 0.0f), lastY = std::nextafter(maxY, 0.0f);
+    for (int k = 0; k < cells; ++k) {
+      xs[static_cast<size_t>(k)] = std::min(
+          std::max(c.x + a00 * du[static_cast<size_t>(k)] + a01 * dv[static_cast<size_t>(k)], 0.0f),
+          lastX);
+      ys[static_cast<size_t>(k)] = std::min(
+          std::max(c.y + a10 * du[static_cast<size_t>(k)] + a11 * dv[static_cast<size_t>(k)], 0.0f),
+          lastY);
+    }
+    for (int k = 0; k < cells; ++k) {
+      const int x0 = static_cast<int>(xs[static_cast<size_t>(k)]);
+      const int y0 = static_cast<int>(ys[static_cast<size_t>(k)]);
+      xs[static_cast<size_t>(k)] -= static_cast<float>(x0);
+      ys[static_cast<size_t>(k)] -= static_cast<float>(y0);
+      offset[static_cast<size_t>(k)] = y0 * step + x0;
+    }
+    for (int k = 0; k < cells; ++k) {
+      const uchar* r0 = gray.data + offset[static_cast<size_t>(k)];
+      p00[static_cast<size_t>(k)] = r0[0];
+      p01[static_cast<size_t>(k)] = r0[1];
+      p10[static_cast<size_t>(k)] = r0[step];
+      p11[static_cast<size_t>(k)] = r0[step + 1];
+    }
+    for (int k = 0; k < cells; ++k) {
+      const size_t j = static_cast<size_t>(k);
+      const float fx = xs[j], fy = ys[j];
+      p[k] = (1 - fy) * ((1 - fx) * p00[j] + fx * p01[j]) + fy * ((1 - fx) * p10[j] + fx * p11[j]);
     }
     out.normaliseLast(i);
   }

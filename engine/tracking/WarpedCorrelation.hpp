@@ -40,11 +40,11 @@ class WarpedCorrelation {
 // return false (leaving `out` unspecified) when the window leaves the image or is flat.
 // The frame window around the sub-pixel pK, bilinear (gray8: CV_8UC1).
 bool sampleFrameWindow(const cv::Mat& gray8, cv::Point2d pK, int n, float* out);
-// The reference (CV_32FC1) sampled at pA + W(pK + m) - W(pK) for every window offset m, with W
-// mapping frame pixels to reference pixels (O W of Eq. 19 with O centring the window on pA); W is
-// taken to first order at pK (its Jacobian: exact for an affine W, within a few thousandths of
-// a pixel for tracking's W = L H over a window).
-bool sampleWarpedReferenceWindow(const cv::Mat& referenceF, const cv::Matx33d& W, cv::Point2d pK,
+// The reference (CV_8UC1 or CV_32FC1: the same samples for the same pixel values) sampled at
+// pA + W(pK + m) - W(pK) for every window offset m, with W mapping frame pixels to reference pixels
+// (O W of Eq. 19 with O centring the window on pA); W is taken to first order at pK (its Jacobian:
+// exact for an affine W, within a few thousandths of a pixel for tracking's W = L H over a window).
+bool sampleWarpedReferenceWindow(const cv::Mat& reference, const cv::Matx33d& W, cv::Point2d pK,
                                  cv::Point2d pA, int n, float* out);
 // Dot product of two sampled windows of `count` floats: their Eq. 19 score in [-1, 1].
 float windowScore(const float* a, const float* b, int count);

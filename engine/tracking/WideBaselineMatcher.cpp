@@ -7,6 +7,7 @@
 
 #include "engine/config/ResolutionScale.hpp"
 #include "engine/core/Error.hpp"
+#include "engine/features/CornerDetector.hpp"
 #include "engine/tracking/WarpedCorrelation.hpp"
 
 namespace reftrack {
@@ -17,9 +18,7 @@ MatchableReference MatchableReference::build(const cv::Mat& image, std::vector<c
   if (!preferred.empty() && preferred.size() != corners.size())
     throw Error("MatchableReference: one preference flag per corner is required");
   MatchableReference r;
-  cv::Mat gray = image;
-  if (image.channels() == 3) cv::cvtColor(image, gray, cv::COLOR_BGR2GRAY);
-  gray.convertTo(r.imageF, CV_32F);
+  r.gray8 = toGray8(image);
   r.corners = std::move(corners);
   r.grid = CornerGrid(r.corners, image.size(), 32);
   // Round robin over the cells of an 8x6 grid, preferred corners first.
@@ -174,10 +173,10 @@ std::vector<WideBaselineMatch> WideBaselineMatcher::match(
   // matches: 2.5 queries per corner; callgrind: CornerGrid::query 5.9% -> 4.4% of a tracked
   // frame's instructions). The same neighbours, so the same matches.
   const double referenceArea =
-      static_cast<double>(reference.imageF.cols) * static_cast<double>(reference.imageF.rows);
+      static_cast<double>(reference.gray8.cols) * static_cast<double>(reference.gray8.rows);
   const int previousCell = std::max(
       40, static_cast<int>(std::sqrt(2.0 * referenceArea / static_cast<double>(previous.size()))));
-  const CornerGrid previousGrid(inReference, reference.imageF.size(), previousCell);
+  const CornerGrid previousGrid(inReference, reference.gray8.size(), previousCell);
 
   std::vector<int> candidates, nearby;
   std::vector<float> warped(static_cast<std::size_t>(count));
@@ -191,7 +190,7 @@ std::vector<WideBaselineMatch> WideBaselineMatcher::match(
     for (double half = 40.0;; half *= 2.0) {
       previousGrid.query(pA, half, half, nearby);
       if (nearby.size() >= 8 || nearby.size() == previous.size() ||
-          half > 4.0 * reference.imageF.cols)
+          half > 4.0 * reference.gray8.cols)
         break;
     }
     cv::Matx33d LInverse;  // reference -> previous frame
@@ -204,7 +203,7 @@ std::vector<WideBaselineMatch> WideBaselineMatcher::match(
     frame.grid.query(pK, hx, hy, candidates);
     if (candidates.empty()) continue;
     const cv::Matx33d W = referenceToK.inv();
-    if (!sampleWarpedReferenceWindow(reference.imageF, W, pK, pA, n, warped.data())) continue;
+    if (!sampleWarpedReferenceWindow(reference.gray8, W, pK, pA, n, warped.data())) continue;
     float bestScore = static_cast<float>(params_.minScore);
     int bestFrame = -1;
     for (int f : candidates) {

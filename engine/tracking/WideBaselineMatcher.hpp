@@ -19,11 +19,11 @@
 
 namespace reftrack {
 
-// A reference image ready for matching: grey float pixels, its corners with a lookup grid, and
+// A reference image ready for matching: 8-bit grey pixels, its corners with a lookup grid, and
 // the order in which corners are tried: the `preferred` ones (e.g. those with a 3D point) first,
 // each group interleaved over an 8x6 grid so that any prefix is spread over the image.
 struct MatchableReference {
-  cv::Mat imageF;  // CV_32FC1
+  cv::Mat gray8;  // CV_8UC1
   std::vector<cv::Point2f> corners;
   CornerGrid grid;
   std::vector<int> order;

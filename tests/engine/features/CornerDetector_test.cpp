@@ -96,3 +96,23 @@ TEST(CornerDetector, ColourInputAndBadInput) {
   bad.quality = -1;
   EXPECT_THROW(CornerDetector{bad}, Error);
 }
+
+TEST(CornerDetector, DetectingOnAPyramidGivesTheSameCornersAndSharesItsLevel) {
+  // 1280x720 is detected on pyramid level 1: through an ImagePyramid the same corners come out
+  // (bit for bit) and the level is left built in the pyramid for its other users.
+  const cv::Mat image = test::texturedImage({1280, 720}, 11);
+  const CornerDetector detector;
+  const std::vector<Corner> direct = detector.detect(image);
+  const ImagePyramid pyramid(image);
+  const CornerDetector second;  // a fresh FAST threshold hint, as `detector` had
+  const std::vector<Corner> viaPyramid = second.detect(pyramid);
+  ASSERT_GT(direct.size(), 100u);
+  ASSERT_EQ(viaPyramid.size(), direct.size());
+  for (std::size_t i = 0; i < direct.size(); ++i) {
+    EXPECT_EQ(viaPyramid[i].position, direct[i].position);
+    EXPECT_EQ(viaPyramid[i].response, direct[i].response);
+  }
+  const uchar* level = pyramid.level(1).data;
+  second.detect(pyramid);
+  EXPECT_EQ(pyramid.level(1).data, level);
+}

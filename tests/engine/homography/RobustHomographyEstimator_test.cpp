@@ -143,3 +143,25 @@ TEST(RobustHomographyEstimator, FindsInliersConfinedToANarrowStrip) {
   // Exact matches: every strip match is within the 1 px inlier threshold of the fit.
   for (int i = 0; i < 32; i += 2) EXPECT_TRUE(est.inliers[static_cast<size_t>(i)]) << i;
 }
+
+TEST(RobustHomographyEstimator, RefinementReachesAStronglyPerspectiveHFromAFewPixelsOff) {
+  // Exact matches of an H with strong perspective (its last row bends 320x240 by tens of
+  // pixels), started a few pixels off: all eight parameters and their couplings in the normal
+  // equations (the perspective pair against the other six) must be right for the
+  // Levenberg-Marquardt steps to land on H within its 10 steps, to float rounding (~1e-5 px).
+  const cv::Matx33d truth(0.9, 0.12, 14.0, -0.08, 1.1, -9.0, 9e-4, -6e-4, 1.0);
+  std::vector<cv::Point2f> src, dst;
+  for (int i = 0; i < 60; ++i) {
+    const cv::Point2f p(static_cast<float>(5 + (i * 41) % 310),
+                        static_cast<float>(4 + (i * 67) % 232));
+    const cv::Point2d q = transferPoint(truth, p);
+    src.push_back(p);
+    dst.emplace_back(static_cast<float>(q.x), static_cast<float>(q.y));
+  }
+  std::vector<int> all(src.size());
+  for (size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
+  const cv::Matx33d start = truth * cv::Matx33d(1.01, 0.005, 2, -0.004, 0.99, -2, 2e-5, 1e-5, 1);
+  ASSERT_GT(test::cornerError(start, truth, {320, 240}), 3.0);
+  const cv::Matx33d refined = refineHomography(start, src, dst, all);
+  EXPECT_LT(test::cornerError(refined, truth, {320, 240}), 1e-3);
+}

@@ -57,3 +57,20 @@ TEST(WindowAlignment, RefusesFlatWindowsAndWindowsOutsideTheFrame) {
   EXPECT_THROW(alignWindows(textured, cv::Mat(240, 320, CV_32F), cv::Matx33d::eye(), {}, 5), Error);
   EXPECT_THROW(alignWindows(textured, textured, cv::Matx33d::eye(), {}, 0), Error);
 }
+
+TEST(WindowAlignment, RefusesAWindowWhosePreimageCrossesTheReferenceEdgeOnly) {
+  // H shifts the reference 10 px right. The template (the window and its 1-pixel border,
+  // half + 1 px around q) must lie inside the reference: at q.x = 10 + half + 1.5 its preimage
+  // starts 0.5 px inside the reference's left edge, at 10 + half + 0.5 it starts 0.5 px outside
+  // (the frame window itself is inside the frame in both cases).
+  const int half = 5;
+  const cv::Mat textured = test::texturedImage({320, 240}, 43);
+  const cv::Matx33d shift(1, 0, 10, 0, 1, 0, 0, 0, 1);
+  const cv::Mat frame = test::warpedBy(textured, shift);
+  const WindowAlignmentResult r =
+      alignWindows(textured, frame, shift,
+                   {cv::Point2f(10 + half + 1.5f, 120), cv::Point2f(10 + half + 0.5f, 120)}, half);
+  EXPECT_EQ(r.status[0], 1);
+  EXPECT_LT(cv::norm(r.found[0] - cv::Point2f(10 + half + 1.5f, 120)), 0.05);
+  EXPECT_EQ(r.status[1], 0);
+}

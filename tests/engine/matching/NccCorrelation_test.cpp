@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <opencv2/imgproc.hpp>
 
 #include "engine/core/Error.hpp"
@@ -65,4 +66,58 @@ TEST(NccCorrelation, BorderAndFlatWindowsAreInvalid) {
   EXPECT_THROW(NccPatches::warped(a, {{1, 1}}, {}, 5), Error);
   EXPECT_THROW(NccPatches(0), Error);
   EXPECT_THROW(P.score(1, NccPatches::square(a, {{25, 25}}, 3), 0), Error);
+}
+
+TEST(NccCorrelation, WarpedWindowsAreTheBilinearSamplesOfTheMappedPixels) {
+  // Against a plain per-pixel implementation (bilinear at c + A (u, v), the window rejected when
+  // any pixel leaves [0, cols - 1) x [0, rows - 1)), normalised alike: the same validity and the
+  // same values, for windows well inside and windows grazing the image border.
+  const cv::Mat a = test::texturedImage({160, 120}, 9);
+  const int h = 5;
+  const cv::Matx22f A(1.3f, 0.4f, -0.35f, 0.9f);
+  std::vector<cv::Point2f> centres;
+  for (float y = 3.5f; y < 120; y += 9.25f)
+    for (float x = 2.25f; x < 160; x += 7.75f) centres.emplace_back(x, y);
+  const NccPatches patches =
+      NccPatches::warped(a, centres, std::vector<cv::Matx22f>(centres.size(), A), h);
+  int valid = 0, invalid = 0;
+  for (size_t i = 0; i < centres.size(); ++i) {
+    std::vector<float> expected;
+    bool inside = true;
+    for (int v = -h; v <= h && inside; ++v)
+      for (int u = -h; u <= h; ++u) {
+        const float x = centres[i].x + A(0, 0) * u + A(0, 1) * v;
+        const float y = centres[i].y + A(1, 0) * u + A(1, 1) * v;
+        if (!(x >= 0 && y >= 0 && x < a.cols - 1 && y < a.rows - 1)) {
+          inside = false;
+          break;
+        }
+        const int x0 = static_cast<int>(x), y0 = static_cast<int>(y);
+        const float fx = x - x0, fy = y - y0;
+        const uchar* r0 = a.ptr<uchar>(y0) + x0;
+        const uchar* r1 = a.ptr<uchar>(y0 + 1) + x0;
+        expected.push_back((1 - fy) * ((1 - fx) * r0[0] + fx * r0[1]) +
+                           fy * ((1 - fx) * r1[0] + fx * r1[1]));
+      }
+    ASSERT_EQ(patches.valid(static_cast<int>(i)), inside) << i;
+    if (!inside) {
+      ++invalid;
+      continue;
+    }
+    ++valid;
+    // Normalised as NccPatches does (zero mean, unit norm): compare through the correlation of
+    // the reference samples with the window, 1 to float rounding.
+    double mean = 0;
+    for (float e : expected) mean += e;
+    mean /= static_cast<double>(expected.size());
+    double ss = 0, dot = 0;
+    const float* got = patches.patch(static_cast<int>(i));
+    for (size_t k = 0; k < expected.size(); ++k) {
+      ss += (expected[k] - mean) * (expected[k] - mean);
+      dot += (expected[k] - mean) * got[k];
+    }
+    EXPECT_NEAR(dot / std::sqrt(ss), 1.0, 1e-5) << i;
+  }
+  EXPECT_GT(valid, 100);
+  EXPECT_GT(invalid, 20);
 }

@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "TrackingTestImages.hpp"
+#include "engine/core/Error.hpp"
 #include "engine/features/CornerDetector.hpp"
 
 namespace reftrack {
@@ -109,6 +110,32 @@ TEST(WarpedCorrelation, SampledWindowAgreesWithTheExactWarp) {
     ASSERT_GT(windows, 50);
     EXPECT_GT(worst, bound);
   }
+}
+
+// The matcher samples the 8-bit reference (a quarter of the memory of its float copy): the
+// windows are bit for bit those of the float copy, for the strong warp and a tracking one.
+TEST(WarpedCorrelation, EightBitReferenceGivesTheFloatCopysWindowsExactly) {
+  const cv::Size size(640, 480);
+  const cv::Mat gray = test::texturedImage(size, 6);
+  const cv::Mat reference = toFloat(gray);
+  const cv::Matx33d L(1.2, 0.3, -40, -0.25, 1.1, 25, 0, 0, 1);
+  const int n = 5, count = (2 * n + 1) * (2 * n + 1);
+  int windows = 0;
+  for (const cv::Matx33d& W : {test::strongWarp(size, 45.0, 1.4), L})
+    for (int y = 10; y < size.height - 10; y += 37)
+      for (int x = 10; x < size.width - 10; x += 41) {
+        const cv::Point2d pK(x + 0.3, y + 0.7), pA(size.width - x - 0.4, size.height - y + 0.2);
+        std::vector<float> fromFloat(count), from8(count);
+        const bool okFloat = sampleWarpedReferenceWindow(reference, W, pK, pA, n, fromFloat.data());
+        ASSERT_EQ(sampleWarpedReferenceWindow(gray, W, pK, pA, n, from8.data()), okFloat);
+        if (!okFloat) continue;
+        ++windows;
+        for (int i = 0; i < count; ++i) ASSERT_EQ(from8[i], fromFloat[i]);
+      }
+  EXPECT_GT(windows, 100);
+  EXPECT_THROW(sampleWarpedReferenceWindow(cv::Mat(size, CV_16UC1, cv::Scalar(0)), L, {50, 50},
+                                           {50, 50}, n, std::vector<float>(count).data()),
+               Error);
 }
 
 }  // namespace
