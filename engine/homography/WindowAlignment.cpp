@@ -4,24 +4,9 @@
 #include <cmath>
 
 #include "engine/core/Error.hpp"
+#include "engine/core/LaneDotProduct.hpp"
 
 namespace reftrack {
-
-namespace {
-
-// Sum of a[i] b[i] over n floats in eight independent partial sums (vectorisable).
-float dot8(const float* a, const float* b, int n) {
-  float partial[8] = {0, 0, 0, 0, 0, 0, 0, 0};
-  int i = 0;
-  for (; i + 8 <= n; i += 8)
-    for (int j = 0; j < 8; ++j) partial[j] += a[i + j] * b[i + j];
-  float sum = 0.0f;
-  for (; i < n; ++i) sum += a[i] * b[i];
-  for (float p : partial) sum += p;
-  return sum;
-}
-
-}  // namespace
 
 WindowAlignmentResult alignWindows(const cv::Mat& reference, const cv::Mat& frame,
                                    const cv::Matx33d& H, const std::vector<cv::Point2f>& predicted,
@@ -144,8 +129,8 @@ WindowAlignmentResult alignWindows(const cv::Mat& reference, const cv::Mat& fram
         for (int u = 0; u < side; ++u)
           e[u] = t[u] - (w00 * r0[u] + w01 * r0[u + 1] + w10 * r1[u] + w11 * r1[u + 1]);
       }
-      const double bx = dot8(residual.data(), gx.data(), count);
-      const double by = dot8(residual.data(), gy.data(), count);
+      const double bx = laneDotProduct(residual.data(), gx.data(), count);
+      const double by = laneDotProduct(residual.data(), gy.data(), count);
       const double ddx = (gyy * bx - gxy * by) / det, ddy = (gxx * by - gxy * bx) / det;
       dx += ddx;
       dy += ddy;

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "engine/core/Error.hpp"
+#include "engine/core/LaneDotProduct.hpp"
 
 namespace reftrack {
 
@@ -92,27 +93,15 @@ namespace {
 
 // In place: subtract the mean and scale to unit norm; false when the window is flat (SD below
 // ~0.5 grey level, where the correlation would only measure noise).
-// Sum of v[i] * w[i] over count floats in eight independent partial sums (as windowScore): a
-// single running sum is a chain of dependent additions the compiler may not reorder.
-float partialSums(const float* v, const float* w, int count) {
-  float partial[8] = {0, 0, 0, 0, 0, 0, 0, 0};
-  int i = 0;
-  for (; i + 8 <= count; i += 8)
-    for (int j = 0; j < 8; ++j) partial[j] += v[i + j] * w[i + j];
-  float sum = 0.0f;
-  for (; i < count; ++i) sum += v[i] * w[i];
-  for (float p : partial) sum += p;
-  return sum;
-}
 
 bool normaliseWindow(float* v, int count) {
   // Sums in eight lanes (the two running sums were ~4% of a tracked 1280x720 frame: perf, 6-DOF
   // handheld webcam sequence); the ones for the mean are a dot product with ones.
   thread_local std::vector<float> ones;
   if (static_cast<int>(ones.size()) < count) ones.assign(static_cast<std::size_t>(count), 1.0f);
-  const float mean = partialSums(v, ones.data(), count) / static_cast<float>(count);
+  const float mean = laneDotProduct(v, ones.data(), count) / static_cast<float>(count);
   for (int i = 0; i < count; ++i) v[i] -= mean;
-  const float ss = partialSums(v, v, count);
+  const float ss = laneDotProduct(v, v, count);
   if (!(ss >= 0.25f * static_cast<float>(count))) return false;
   const float inv = 1.0f / std::sqrt(ss);
   for (int i = 0; i < count; ++i) v[i] *= inv;
@@ -198,15 +187,7 @@ bool sampleWarpedReferenceWindow(const cv::Mat& reference, const cv::Matx33d& W,
 }
 
 float windowScore(const float* a, const float* b, int count) {
-  // Eight independent partial sums: the compiler can keep them in one vector register.
-  float partial[8] = {0, 0, 0, 0, 0, 0, 0, 0};
-  int i = 0;
-  for (; i + 8 <= count; i += 8)
-    for (int j = 0; j < 8; ++j) partial[j] += a[i + j] * b[i + j];
-  float sum = 0.0f;
-  for (; i < count; ++i) sum += a[i] * b[i];
-  for (float p : partial) sum += p;
-  return sum;
+  return laneDotProduct(a, b, count);  // eight partial sums: one vector register
 }
 
 }  // namespace reftrack
