@@ -1,5 +1,6 @@
 #include "engine/tracking/WarpedCorrelation.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -184,6 +185,30 @@ bool sampleWarpedReferenceWindow(const cv::Mat& reference, const cv::Matx33d& W,
   if (reference.type() == CV_8UC1) return sampleWarpedWindow<uchar>(reference, W, pK, pA, n, out);
   if (reference.type() == CV_32FC1) return sampleWarpedWindow<float>(reference, W, pK, pA, n, out);
   throw Error("sampleWarpedReferenceWindow: the reference must be CV_8UC1 or CV_32FC1");
+}
+
+void prefetchWarpedReferenceWindow(const cv::Mat& reference, const cv::Matx33d& W, cv::Point2d pK,
+                                   cv::Point2d pA, int n) {
+  if (reference.type() != CV_8UC1) return;
+  // The window's bounding box from W's Jacobian at pK (as sampleWarpedWindow computes it).
+  const double s = W(2, 0) * pK.x + W(2, 1) * pK.y + W(2, 2);
+  const double cx = (W(0, 0) * pK.x + W(0, 1) * pK.y + W(0, 2)) / s;
+  const double cy = (W(1, 0) * pK.x + W(1, 1) * pK.y + W(1, 2)) / s;
+  const double ex =
+      n * (std::abs(W(0, 0) - cx * W(2, 0)) + std::abs(W(0, 1) - cx * W(2, 1))) / std::abs(s);
+  const double ey =
+      n * (std::abs(W(1, 0) - cy * W(2, 0)) + std::abs(W(1, 1) - cy * W(2, 1))) / std::abs(s);
+  if (!(std::isfinite(ex) && std::isfinite(ey) && std::isfinite(pA.x) && std::isfinite(pA.y)))
+    return;
+  const int x0 = static_cast<int>(std::clamp(pA.x - ex, 0.0, reference.cols - 1.0));
+  const int x1 = static_cast<int>(std::clamp(pA.x + ex + 1, 0.0, reference.cols - 1.0));
+  const int y0 = static_cast<int>(std::clamp(pA.y - ey, 0.0, reference.rows - 1.0));
+  const int y1 = static_cast<int>(std::clamp(pA.y + ey + 1, 0.0, reference.rows - 1.0));
+  constexpr int kLine = 64;  // bytes per cache line
+  for (int y = y0; y <= y1; ++y) {
+    const uchar* row = reference.ptr<uchar>(y);
+    for (int x = x0 - (x0 % kLine); x <= x1; x += kLine) __builtin_prefetch(row + x);
+  }
 }
 
 float windowScore(const float* a, const float* b, int count) {

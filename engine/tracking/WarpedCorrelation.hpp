@@ -46,6 +46,11 @@ bool sampleFrameWindow(const cv::Mat& gray8, cv::Point2d pK, int n, float* out);
 // exact for an affine W, within a few thousandths of a pixel for tracking's W = L H over a window).
 bool sampleWarpedReferenceWindow(const cv::Mat& reference, const cv::Matx33d& W, cv::Point2d pK,
                                  cv::Point2d pA, int n, float* out);
+// A hint, no effect on results: starts loading the reference pixels that the same call of
+// sampleWarpedReferenceWindow will read (8-bit reference; nothing for other types), so that a
+// caller can fetch the next window while it scores the current one.
+void prefetchWarpedReferenceWindow(const cv::Mat& reference, const cv::Matx33d& W, cv::Point2d pK,
+                                   cv::Point2d pA, int n);
 // Dot product of two sampled windows of `count` floats: their Eq. 19 score in [-1, 1].
 float windowScore(const float* a, const float* b, int count);
 

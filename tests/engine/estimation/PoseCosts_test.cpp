@@ -2,8 +2,11 @@
 #include <ceres/gradient_checker.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <memory>
 #include <opencv2/calib3d.hpp>
 #include <random>
+#include <vector>
 
 #include "engine/estimation/EpipolarDistanceCost.hpp"
 #include "engine/estimation/ThreeViewReprojectionCost.hpp"
@@ -100,4 +103,60 @@ TEST(ThreeViewReprojectionCost, ZeroAtTruthAndDerivativesCheck) {
   gradientsAgree(
       ThreeViewReprojectionCost::create(s.K, P, s.project(s.T_Ak, P) + Eigen::Vector2d(1, -1), 0.4),
       s.T_Ak.toVector6());
+}
+
+// The batch costs (analytic chain rule through F or R) give the per-match functors' residuals
+// and numerically checked derivatives, at a general pose and at one with (almost) no rotation,
+// where Ceres switches to its small-angle formulas.
+TEST(PoseBatchCosts, ResidualsEqualTheFunctorsAndDerivativesCheck) {
+  const Scene s;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-0.3, 0.3), z(0.7, 1.6), noise(-1.0, 1.0);
+  std::vector<EpipolarDistanceBatchCost::Match> epi;
+  std::vector<ThreeViewReprojectionBatchCost::Match> tv;
+  const RigidPose refToA = s.T_AB.inverse();
+  for (int i = 0; i < 12; ++i) {
+    const Eigen::Vector3d P(u(rng), u(rng), z(rng));
+    const Eigen::Vector2d pK = s.project(s.T_Ak, P) + Eigen::Vector2d(noise(rng), noise(rng));
+    epi.push_back({s.project(s.T_AB, P), pK, 1.0 / (0.3 + 0.1 * i)});
+    tv.push_back({P, pK, 1.0 / (0.2 + 0.05 * i)});
+  }
+  Vector6d nearIdentity = s.T_Ak.toVector6();
+  nearIdentity.tail<3>() << 1e-9, -2e-9, 0.0;
+  for (const Vector6d& x : {s.T_Ak.toVector6(), nearIdentity}) {
+    std::unique_ptr<ceres::CostFunction> e(EpipolarDistanceBatchCost::create(s.K, refToA, epi));
+    std::unique_ptr<ceres::CostFunction> t(ThreeViewReprojectionBatchCost::create(s.K, tv));
+    std::vector<double> re(2 * epi.size()), rt(2 * tv.size());
+    const double* params[] = {x.data()};
+    ASSERT_TRUE(e->Evaluate(params, re.data(), nullptr));
+    ASSERT_TRUE(t->Evaluate(params, rt.data(), nullptr));
+    for (std::size_t i = 0; i < epi.size(); ++i) {
+      double r[2];
+      EpipolarDistanceCost(s.K, refToA, epi[i].pRef, epi[i].pK, 1.0 / epi[i].invSigma)(x.data(), r);
+      EXPECT_NEAR(re[2 * i], r[0], 1e-9 * (1 + std::abs(r[0])));
+      EXPECT_NEAR(re[2 * i + 1], r[1], 1e-9 * (1 + std::abs(r[1])));
+      ThreeViewReprojectionCost(s.K, tv[i].P, tv[i].pK, 1.0 / tv[i].invSigma)(x.data(), r);
+      EXPECT_NEAR(rt[2 * i], r[0], 1e-9 * (1 + std::abs(r[0])));
+      EXPECT_NEAR(rt[2 * i + 1], r[1], 1e-9 * (1 + std::abs(r[1])));
+    }
+    // The analytic Jacobians equal the automatic ones of the functors (to rounding).
+    std::vector<double> je(12 * epi.size()), jt(12 * tv.size());
+    double* jacE[] = {je.data()};
+    double* jacT[] = {jt.data()};
+    ASSERT_TRUE(e->Evaluate(params, re.data(), jacE));
+    ASSERT_TRUE(t->Evaluate(params, rt.data(), jacT));
+    for (std::size_t i = 0; i < epi.size(); ++i) {
+      double r[2], j[12];
+      double* jac[] = {j};
+      std::unique_ptr<ceres::CostFunction> one(
+          EpipolarDistanceCost::create(s.K, refToA, epi[i].pRef, epi[i].pK, 1.0 / epi[i].invSigma));
+      ASSERT_TRUE(one->Evaluate(params, r, jac));
+      for (int k = 0; k < 12; ++k) EXPECT_NEAR(je[12 * i + k], j[k], 1e-8 * (1 + std::abs(j[k])));
+      one.reset(ThreeViewReprojectionCost::create(s.K, tv[i].P, tv[i].pK, 1.0 / tv[i].invSigma));
+      ASSERT_TRUE(one->Evaluate(params, r, jac));
+      for (int k = 0; k < 12; ++k) EXPECT_NEAR(jt[12 * i + k], j[k], 1e-8 * (1 + std::abs(j[k])));
+    }
+    EXPECT_TRUE(gradientsAgree(e.release(), x));
+    EXPECT_TRUE(gradientsAgree(t.release(), x));
+  }
 }
