@@ -47,6 +47,46 @@ TEST(MatchDescriptors, HammingAgreesWithOpenCvBruteForce) {
   }
 }
 
+// Ties and every remainder of the eight-row blocks: ORB-length rows of few distinct bit patterns
+// (distances tie often), train row counts 1-17 and 300; matchDescriptors must pick the earliest
+// train row at the smallest distance and apply the ratio test to the two smallest distances
+// (brute force with descriptorDistance), for every query.
+TEST(MatchDescriptors, EarliestNearestRowAndTwoSmallestDistancesWithTies) {
+  cv::RNG rng(11);
+  for (const int rows : {1, 2, 7, 8, 9, 15, 16, 17, 300}) {
+    cv::Mat train(rows, 32, CV_8U), query(60, 32, CV_8U);
+    for (cv::Mat* m : {&train, &query})
+      for (int r = 0; r < m->rows; ++r)
+        for (int c = 0; c < 32; ++c) m->at<std::uint8_t>(r, c) = rng.uniform(0, 4) == 0 ? 0x1 : 0;
+    for (const double ratio : {0.8, 1.01}) {
+      const std::vector<cv::DMatch> ours =
+          matchDescriptors(query, train, cv::NORM_HAMMING, ratio, false);
+      std::vector<cv::DMatch> expected;
+      for (int q = 0; q < query.rows && rows >= 2; ++q) {
+        float first = 1e9f, second = 1e9f;
+        int best = -1;
+        for (int t = 0; t < rows; ++t) {
+          const float d = descriptorDistance(query, q, train, t, cv::NORM_HAMMING);
+          if (d < first) {
+            second = first;
+            first = d;
+            best = t;
+          } else if (d < second) {
+            second = d;
+          }
+        }
+        if (first < ratio * second) expected.emplace_back(q, best, first);
+      }
+      ASSERT_EQ(ours.size(), expected.size()) << rows << " rows, ratio " << ratio;
+      for (std::size_t i = 0; i < ours.size(); ++i) {
+        EXPECT_EQ(ours[i].queryIdx, expected[i].queryIdx) << rows;
+        EXPECT_EQ(ours[i].trainIdx, expected[i].trainIdx) << rows;
+        EXPECT_FLOAT_EQ(ours[i].distance, expected[i].distance) << rows;
+      }
+    }
+  }
+}
+
 // descriptorDistance is cv::norm's distance, exactly, for ORB and AKAZE rows (Hamming) and SIFT
 // rows (L2, float): random rows, every pair of the first 20 x 20.
 TEST(DescriptorDistance, EqualsOpenCvNorm) {
