@@ -61,8 +61,26 @@ struct NearestTwo {
 // takes 24 ms for 1000 x 900 ORB descriptors (no hardware popcount in its baseline), this loop
 // 1.2 ms with the CPU's popcount instruction (selected at run time where the CPU has one).
 // Distance of two rows of `bytes` bytes; Words > 0: exactly 8 * Words bytes (unrolled).
+// The popcount instruction is chosen at run time where the CPU has one (x86): the loops below
+// are inlined into a copy compiled for it (REFTRACK_POPCNT_TARGET) and a default copy, and
+// cpuHasPopcnt() picks one. Not GCC's target_clones: that makes an IFUNC whose resolver runs
+// while the program is relocated, before a sanitizer's runtime is initialised, and under
+// ThreadSanitizer the instrumented resolver crashed every executable linking this file.
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+#define REFTRACK_POPCNT_TARGET __attribute__((target("popcnt")))
+#define REFTRACK_ALWAYS_INLINE inline __attribute__((always_inline))
+bool cpuHasPopcnt() {
+  static const bool has = __builtin_cpu_supports("popcnt");
+  return has;
+}
+#else
+#define REFTRACK_POPCNT_TARGET
+#define REFTRACK_ALWAYS_INLINE inline
+bool cpuHasPopcnt() { return false; }
+#endif
+
 template <int Words>
-inline int hamming(const std::uint8_t* a, const std::uint8_t* b, int bytes) {
+REFTRACK_ALWAYS_INLINE int hamming(const std::uint8_t* a, const std::uint8_t* b, int bytes) {
   int d = 0;
   const int words = Words > 0 ? Words : bytes / 8;
   for (int w = 0; w < words; ++w) {
@@ -95,8 +113,8 @@ struct NearestTwoSoFar {
 };
 
 template <int Words>
-inline void nearestTwoRows(const cv::Mat& query, const cv::Mat& train,
-                           std::vector<NearestTwo>& out) {
+REFTRACK_ALWAYS_INLINE void nearestTwoRows(const cv::Mat& query, const cv::Mat& train,
+                                           std::vector<NearestTwo>& out) {
   for (int q = 0; q < query.rows; ++q) {
     const std::uint8_t* a = query.ptr<std::uint8_t>(q);
     NearestTwoSoFar n;
@@ -109,15 +127,23 @@ inline void nearestTwoRows(const cv::Mat& query, const cv::Mat& train,
 // Hamming distances, hand-written: cv::BFMatcher's Hamming kNN on this Debian OpenCV 4.6 build
 // takes 24 ms for 1000 x 900 ORB descriptors (no hardware popcount in its baseline), this loop
 // 1.2 ms with the CPU's popcount instruction (selected at run time where the CPU has one).
-#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
-__attribute__((target_clones("popcnt", "default")))
-#endif
-void nearestTwoHammingScalar(const cv::Mat& query, const cv::Mat& train,
-                             std::vector<NearestTwo>& out) {
+REFTRACK_ALWAYS_INLINE void nearestTwoHammingRows(const cv::Mat& query, const cv::Mat& train,
+                                                  std::vector<NearestTwo>& out) {
   if (query.cols == 32)
     nearestTwoRows<4>(query, train, out);  // ORB
   else
     nearestTwoRows<0>(query, train, out);  // AKAZE: 61 bytes
+}
+REFTRACK_POPCNT_TARGET void nearestTwoHammingPopcnt(const cv::Mat& query, const cv::Mat& train,
+                                                    std::vector<NearestTwo>& out) {
+  nearestTwoHammingRows(query, train, out);
+}
+void nearestTwoHammingScalar(const cv::Mat& query, const cv::Mat& train,
+                             std::vector<NearestTwo>& out) {
+  if (cpuHasPopcnt())
+    nearestTwoHammingPopcnt(query, train, out);
+  else
+    nearestTwoHammingRows(query, train, out);
 }
 
 #if defined(__GNUC__) && defined(__x86_64__)
@@ -223,17 +249,19 @@ void nearestTwoHamming(const cv::Mat& query, const cv::Mat& train, std::vector<N
   nearestTwoHammingScalar(query, train, out);
 }
 
-#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
-__attribute__((target_clones("popcnt", "default")))
-#endif
-int hammingDistance(const std::uint8_t* a, const std::uint8_t* b, int bytes) {
+REFTRACK_ALWAYS_INLINE int hammingRow(const std::uint8_t* a, const std::uint8_t* b, int bytes) {
   return bytes == 32 ? hamming<4>(a, b, bytes) : hamming<0>(a, b, bytes);
 }
+REFTRACK_POPCNT_TARGET int hammingRowPopcnt(const std::uint8_t* a, const std::uint8_t* b,
+                                            int bytes) {
+  return hammingRow(a, b, bytes);
+}
+int hammingDistance(const std::uint8_t* a, const std::uint8_t* b, int bytes) {
+  return cpuHasPopcnt() ? hammingRowPopcnt(a, b, bytes) : hammingRow(a, b, bytes);
+}
 
-#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
-__attribute__((target_clones("popcnt", "default")))
-#endif
-void hammingMatrixScalar(const cv::Mat& query, const cv::Mat& train, cv::Mat& out) {
+REFTRACK_ALWAYS_INLINE void hammingMatrixRows(const cv::Mat& query, const cv::Mat& train,
+                                              cv::Mat& out) {
   for (int q = 0; q < query.rows; ++q) {
     const std::uint8_t* a = query.ptr<std::uint8_t>(q);
     float* row = out.ptr<float>(q);
@@ -242,6 +270,16 @@ void hammingMatrixScalar(const cv::Mat& query, const cv::Mat& train, cv::Mat& ou
                                       ? hamming<4>(a, train.ptr<std::uint8_t>(t), 32)
                                       : hamming<0>(a, train.ptr<std::uint8_t>(t), query.cols));
   }
+}
+REFTRACK_POPCNT_TARGET void hammingMatrixPopcnt(const cv::Mat& query, const cv::Mat& train,
+                                                cv::Mat& out) {
+  hammingMatrixRows(query, train, out);
+}
+void hammingMatrixScalar(const cv::Mat& query, const cv::Mat& train, cv::Mat& out) {
+  if (cpuHasPopcnt())
+    hammingMatrixPopcnt(query, train, out);
+  else
+    hammingMatrixRows(query, train, out);
 }
 
 #ifdef REFTRACK_HAVE_VPOPCNT
