@@ -20,8 +20,8 @@ class CornerDetector {
 
   // gray: CV_8UC1 (a 3-channel BGR image is converted). At most params.countFor(size) corners,
   // strongest first. Throws reftrack::Error on an empty image or an unsupported type. The FAST
-  // threshold adapts to the image and is remembered for the next call (so one detector must not
-  // be used from two threads at once).
+  // threshold adapts to the image and to the corners delivered, and is remembered for the next call
+  // (so one detector must not be used from two threads at once).
   std::vector<Corner> detect(const cv::Mat& image) const;
   // The same on an 8-bit grey image's pyramid, whose level the detection works on is then built
   // once for every user of the pyramid (the homography refiner aligns on the same level).
@@ -32,6 +32,7 @@ class CornerDetector {
  private:
   CornerParams params_;
   mutable int thresholdHint_ = 0;  // FAST threshold of the last call (0: none yet)
+  mutable int producedHint_ = 0;   // decaying maximum of the corners delivered (0: none yet)
 };
 
 // The 8-bit single-channel view of an image (converted from BGR/BGRA/16-bit when needed).
