@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 #include "engine/config/ResolutionScale.hpp"
 #include "engine/core/Error.hpp"
@@ -231,9 +232,18 @@ void HomographyTracker::matchAndFit(Attempt& a, const cv::Mat& gray, const Refer
     // position q maps to the reference at r + J m, J the Jacobian of H_pred^-1 at q.
     const cv::Matx33d Hinv = guide->inv();
     std::vector<cv::Matx22f> maps(ref.points.size());
+    // A reference corner predicted farther outside the frame than any search reaches gets no
+    // window (a NaN map: NccPatches::warped marks it invalid without sampling): it can have no
+    // candidate, and the failure test below counts only corners mapped inside the frame. On a
+    // pan most of the reference can lie outside the view.
+    const double reach = std::max(guidedHalf, static_cast<double>(denseRadius)) +
+                         2.0 * params_.correlation.halfWindow + 2.0;
+    const float nan = std::numeric_limits<float>::quiet_NaN();
     for (size_t i = 0; i < ref.points.size(); ++i) {
       const cv::Point2d q = transferPoint(*guide, cv::Point2d(ref.points[i].x, ref.points[i].y));
-      maps[i] = jacobianAt(Hinv, q);
+      const bool reachable =
+          q.x > -reach && q.y > -reach && q.x < gray.cols + reach && q.y < gray.rows + reach;
+      maps[i] = reachable ? jacobianAt(Hinv, q) : cv::Matx22f(nan, nan, nan, nan);
     }
     const NccPatches warpedRef =
         NccPatches::warped(refGray_, ref.points, maps, params_.correlation.halfWindow);
