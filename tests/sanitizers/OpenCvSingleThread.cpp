@@ -1,5 +1,5 @@
 // Linked into reftrack_app (so the `reftrack` CLI and app_tests) in the ThreadSanitizer build only
-// (cmake/Sanitizers.cmake). OpenCV's parallel_for_ runs on TBB, whose synchronisation
+// (tests/sanitizers/Sanitizers.cmake). OpenCV's parallel_for_ runs on TBB, whose synchronisation
 // ThreadSanitizer cannot see (libtbb is not instrumented), so every parallel loop, OpenCV's own
 // (cv::cvtColor) as well as ours (DeskScene), is reported as a race between a TBB worker and the
 // caller that waited for it. One OpenCV thread runs those loops on the calling thread: the threads
