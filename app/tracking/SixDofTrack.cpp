@@ -84,6 +84,9 @@ int runSixDofTrack(const SixDofTrackOptions& o) {
     const TrackingResult result = tracker.process(frame->image, frame->index, frame->timestamp);
     const MultiReferenceResult& multi = tracker.last();
     const PoseTrackingResult& r = multi.tracking;
+    if (!multi.notice.empty()) {
+      std::fprintf(stderr, "note: %s\n", multi.notice.c_str());
+    }
     ms.push_back(r.totalMs);
     if (r.state == TrackingState::Tracking) {
       readout = r.rollingShutterReadout;
