@@ -12,7 +12,7 @@
 #include "engine/core/Error.hpp"
 #include "engine/core/ThreadCpuClock.hpp"
 #include "engine/relocalisation/KeypointFeatures.hpp"
-#include "engine/tracking/CornerGrid.hpp"
+#include "engine/features/CornerGrid.hpp"
 
 namespace reftrack {
 

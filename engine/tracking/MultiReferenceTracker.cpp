@@ -79,8 +79,8 @@ struct MultiReferenceTracker::Impl {
   // Built when relocalisation is enabled and the map has a keypoint layer; else the paper's start
   // near a reference is the only way in.
   std::unique_ptr<Relocaliser> relocaliser;
-  std::string relocalisationOff;  // why there is no relocaliser (empty: there is one)
-  bool noticePending = false;     // relocalisationOff not yet reported with a frame
+  std::string relocalisationOff;      // why there is no relocaliser (empty: there is one)
+  bool noticePending = false;         // relocalisationOff not yet reported with a frame
   int framesSinceRelocalisation = 0;  // lost frames since the last attempt
 
   Impl(MultiReferenceMap m, const TrackerParams& p, PoseTrackerLimits l)
@@ -180,6 +180,7 @@ struct MultiReferenceTracker::Impl {
   PoseTrackingResult startNearReference(const cv::Mat& frame, ReferencePair& used);
   PoseTrackingResult relocalise(const cv::Mat& frame, ReferencePair& used,
                                 RelocalisationReport& relocalisation);
+  bool verified(PoseTrackingResult& r) const;
 };
 
 MultiReferenceResult MultiReferenceTracker::Impl::process(const cv::Mat& frame) {
@@ -275,8 +276,7 @@ PoseTrackingResult MultiReferenceTracker::Impl::recover(const cv::Mat& frame,
   const bool due =
       relocaliser && ++framesSinceRelocalisation >= params.relocalisation.attemptEveryFrames;
   if (!due) return start;
-  attempts.failed("start near references " + std::to_string(used.a) + "+" +
-                      std::to_string(used.b),
+  attempts.failed("start near references " + std::to_string(used.a) + "+" + std::to_string(used.b),
                   start);
   framesSinceRelocalisation = 0;
   return relocalise(frame, used, relocalisation);
@@ -296,8 +296,42 @@ PoseTrackingResult MultiReferenceTracker::Impl::startNearReference(const cv::Mat
   if (t.state() == TrackingState::Tracking) t.reset();
   PoseTrackingResult r = t.process(frame);
   used = pair;
-  if (r.state != TrackingState::Tracking) t.reset();
-  return r;
+  if (r.state != TrackingState::Tracking) {
+    t.reset();
+    return r;
+  }
+  // Confirmation on the same frame: the start's pose seeds the wide-baseline matching of every
+  // map point (as a relocalisation candidate does), which finds far more matches than the
+  // narrow-baseline start, refines the pose with them and must be verified.
+  const double startMs = r.totalMs;
+  t.seed(*r.worldToCamera);
+  PoseTrackingResult confirmed = t.process(frame);
+  confirmed.timings.insert(confirmed.timings.begin(), {"start", startMs});
+  if (!verified(confirmed)) {
+    t.reset();
+    confirmed.message = "start near references not confirmed: " + confirmed.message;
+    return confirmed;
+  }
+  confirmed.message = "initialised from the reference images";
+  return confirmed;
+}
+
+// A start (near a reference, or from a relocalisation candidate) confirmed by its seeded pass is
+// reported only with enough matches to distinctive reference corners (DistinctiveCorners): on
+// repeated texture a pose a whole period off keeps the texture's matches and loses the rest.
+// Otherwise r is made Lost with the reason.
+bool MultiReferenceTracker::Impl::verified(PoseTrackingResult& r) const {
+  if (r.state != TrackingState::Tracking) return false;
+  const int needed = params.relocalisation.minDistinctiveInliers;
+  if (r.distinctiveInliers >= needed) return true;
+  r.state = TrackingState::Lost;
+  r.worldToCamera.reset();
+  r.T_Ak.reset();
+  r.message = "not verified: " + std::to_string(r.distinctiveInliers) +
+              " inlier matches to distinctive reference corners, " + std::to_string(needed) +
+              " needed (relocalisation.min_distinctive_inliers): on repeated texture the pose "
+              "could be a whole period off";
+  return false;
 }
 
 // The Relocaliser's candidate, refined and verified by the pair best placed for it.
@@ -322,7 +356,7 @@ PoseTrackingResult MultiReferenceTracker::Impl::relocalise(const cv::Mat& frame,
     relocalisation.ms = msSince(start);
     relocalisation.cpuMs = threadCpuMs() - cpuStart;
     r.timings.insert(r.timings.begin(), {"relocalise", attempt.ms});
-    if (r.state == TrackingState::Tracking) {
+    if (verified(r)) {
       relocalisation.succeeded = true;
       relocalisation.message +=
           "; verified by references " + std::to_string(pair.a) + "+" + std::to_string(pair.b);
