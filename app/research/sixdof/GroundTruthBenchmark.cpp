@@ -60,13 +60,17 @@ MethodSummary summarise(const MethodRun& run, const std::vector<bool>& truth) {
     ++s.frames;
     const double e = run.errorPx[k];
     if (std::isnan(e)) continue;
-    errors.push_back(e);
+    ++s.posed;
     s.wrong += e > kWrongPosePx ? 1 : 0;
     s.good += e <= kGoodPosePx ? 1 : 0;
+    if (std::isinf(e))
+      ++s.behind;
+    else
+      errors.push_back(e);
   }
-  s.posed = static_cast<int>(errors.size());
   if (!errors.empty()) {
-    s.meanPx = std::accumulate(errors.begin(), errors.end(), 0.0) / static_cast<double>(s.posed);
+    s.meanPx =
+        std::accumulate(errors.begin(), errors.end(), 0.0) / static_cast<double>(errors.size());
     s.p95Px = percentileOf(errors, 0.95);
     s.maxPx = *std::max_element(errors.begin(), errors.end());
   }

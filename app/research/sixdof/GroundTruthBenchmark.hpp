@@ -60,12 +60,14 @@ struct MethodRun {
 };
 
 struct MethodSummary {
-  int frames = 0;                                 // frames with a true pose
-  int posed = 0;                                  // ... of them given a pose
-  double meanPx = NAN, p95Px = NAN, maxPx = NAN;  // over the posed frames (NaN when none)
-  int wrong = 0;                                  // posed frames more than kWrongPosePx off
-  int good = 0;                                   // posed frames within kGoodPosePx
-  double cpuMedianMs = NAN;                       // median thread CPU per processed frame
+  int frames = 0;  // frames with a true pose
+  int posed = 0;   // ... of them given a pose
+  // Over the posed frames with a finite error (NaN when none).
+  double meanPx = NAN, p95Px = NAN, maxPx = NAN;
+  int behind = 0;  // posed frames whose pose put the whole cube behind the camera (infinite error)
+  int wrong = 0;   // posed frames more than kWrongPosePx off (those behind included)
+  int good = 0;    // posed frames within kGoodPosePx
+  double cpuMedianMs = NAN;  // median thread CPU per processed frame
   double coveragePercent() const { return frames > 0 ? 100.0 * posed / frames : 0.0; }
 };
 

@@ -88,6 +88,14 @@ std::string groundTruthBenchmarkTable(const GroundTruthBenchmarkResult& r) {
                  cell(s.meanPx, 3).c_str(), cell(s.p95Px, 3).c_str(), cell(s.maxPx, 2).c_str(),
                  s.wrong, s.good, s.cpuMedianMs, cell(s.cpuMedianMs / reftrackCpu, 2).c_str());
   }
+  for (const MethodRun& run : r.runs) {
+    const int behind = summarise(run, r.truth).behind;
+    if (behind > 0)
+      out += textf(
+          "%s %s: %d pose(s) put the whole cube behind the camera (counted in >5px, not in "
+          "mean_px, p95_px, max_px)\n",
+          run.method.c_str(), run.shuffled ? "shuffled" : "sequence", behind);
+  }
   for (const MethodRun& run : r.runs)
     for (const auto& [reason, frames] : run.noPose)
       out += textf("no pose, %s %s: %d x %s\n", run.method.c_str(),

@@ -17,7 +17,8 @@ inline constexpr double kPlotErrorCapPx = 10.0;
 
 std::string groundTruthBenchmarkTable(const GroundTruthBenchmarkResult& result);
 
-// Header `frame,true_pose,<method>_<order>_px...`; one row per frame; an empty cell: no pose.
+// Header `frame,true_pose,<method>_<order>_px...`; one row per frame; an empty cell: no pose;
+// inf: the pose put the whole cube behind the camera.
 void writeGroundTruthBenchmarkCsv(const GroundTruthBenchmarkResult& result,
                                   const std::filesystem::path& csv);
 void writeGroundTruthBenchmarkPlot(const GroundTruthBenchmarkResult& result,

@@ -43,7 +43,8 @@ GroundTruthBenchmarkResult smallResult() {
   r.runs = {run("reftrack", false, {0.2, 0.4, NAN, NAN}, {2, 2, 2, 2}),
             run("reftrack", true, {NAN, 6.0, 0.3, NAN}, {20, 20, 20, 20}),
             run("SIFT+PnP", false, {0.5, 12.0, 1.0, 0.7}, {80, 80, 80, 80}),
-            run("SIFT+PnP", true, {0.5, 12.0, 1.0, 0.7}, {90, 90, 90, 90})};
+            run("SIFT+PnP", true, {0.5, 12.0, 1.0, 0.7}, {90, 90, 90, 90}),
+            run("ORB+PnP", false, {INFINITY, 0.3, NAN, NAN}, {50, 50, 50, 50})};
   r.runs[0].noPose["lost"] = 1;
   r.runs[1].noPose["relocalisation: not enough support"] = 1;
   r.seconds = 12.5;
@@ -98,6 +99,13 @@ TEST(GroundTruthBenchmarkReport, TableHasARowPerMethodAndOrder) {
   EXPECT_NE(table.find("no pose, reftrack shuffled: 1 x relocalisation: not enough support"),
             std::string::npos);
   EXPECT_NE(table.find("order seed 7"), std::string::npos);
+  // A pose with the cube behind the camera: wrong, and named, but not in the mean.
+  EXPECT_NE(table.find("ORB+PnP         sequence       3       2   66.7    0.300"),
+            std::string::npos)
+      << table;
+  EXPECT_NE(table.find("ORB+PnP sequence: 1 pose(s) put the whole cube behind the camera"),
+            std::string::npos)
+      << table;
 }
 
 TEST(GroundTruthBenchmarkReport, WritesTableCsvAndPlotIntoTheFolder) {
@@ -110,9 +118,9 @@ TEST(GroundTruthBenchmarkReport, WritesTableCsvAndPlotIntoTheFolder) {
   ASSERT_EQ(csv.size(), 5u);
   EXPECT_EQ(csv[0],
             "frame,true_pose,reftrack_sequence_px,reftrack_shuffled_px,sift_pnp_sequence_px,"
-            "sift_pnp_shuffled_px");
-  EXPECT_EQ(csv[1], "0,1,0.2,,0.5,0.5");
-  EXPECT_EQ(csv[4], "3,0,,,0.7,0.7");
+            "sift_pnp_shuffled_px,orb_pnp_sequence_px");
+  EXPECT_EQ(csv[1], "0,1,0.2,,0.5,0.5,inf");
+  EXPECT_EQ(csv[4], "3,0,,,0.7,0.7,");
   const cv::Mat plot = cv::imread(files.plot.string());
   ASSERT_FALSE(plot.empty());
   EXPECT_EQ(plot.size(), cv::Size(1200, 600));

@@ -61,20 +61,22 @@ TEST(GroundTruthBenchmark, CubeErrorIsTheMeanVertexDistanceThroughKAlone) {
 }
 
 // Coverage, mean / p95 / max and the wrong (> 5 px) and good (<= 1.5 px) counts are over the
-// frames with a true pose; a pose on a frame without one is not scored.
+// frames with a true pose; a pose on a frame without one is not scored. A pose that put the cube
+// behind the camera (infinite error) is posed and wrong, but left out of mean / p95 / max.
 TEST(GroundTruthBenchmark, SummaryCountsOverFramesWithATruePose) {
   MethodRun run;
-  run.errorPx = {0.5, NAN, 1.5, 7.0, 2.0, NAN, 9.0};
+  run.errorPx = {0.5, NAN, 1.5, 7.0, 2.0, NAN, 9.0, INFINITY};
   run.cpuMs = {1.0, 4.0, 2.0, 3.0, 10.0};
-  const std::vector<bool> truth = {true, true, true, true, true, true, false};
+  const std::vector<bool> truth = {true, true, true, true, true, true, false, true};
   const MethodSummary s = summarise(run, truth);
-  EXPECT_EQ(s.frames, 6);
-  EXPECT_EQ(s.posed, 4);
-  EXPECT_NEAR(s.coveragePercent(), 100.0 * 4 / 6, 1e-12);
+  EXPECT_EQ(s.frames, 7);
+  EXPECT_EQ(s.posed, 5);
+  EXPECT_NEAR(s.coveragePercent(), 100.0 * 5 / 7, 1e-12);
   EXPECT_DOUBLE_EQ(s.meanPx, (0.5 + 1.5 + 7.0 + 2.0) / 4);
   EXPECT_DOUBLE_EQ(s.maxPx, 7.0);
   EXPECT_DOUBLE_EQ(s.p95Px, 2.0 + 0.85 * 5.0);  // sorted 0.5 1.5 2 7: at 0.95 * 3 = 2.85
-  EXPECT_EQ(s.wrong, 1);
+  EXPECT_EQ(s.behind, 1);
+  EXPECT_EQ(s.wrong, 2);
   EXPECT_EQ(s.good, 2);  // 1.5 px counts as good
   EXPECT_DOUBLE_EQ(s.cpuMedianMs, 3.0);
   const MethodSummary none = summarise(MethodRun{{}, false, {NAN, NAN}, {}, {}, {}}, {true, true});
