@@ -101,6 +101,29 @@ TEST(GroundTruthSequence, TumDatasetBringsItsGroundTruth) {
   EXPECT_LT(RigidPose::translationDistance(*s.truth[2], poseOf(2)), 1e-9);
 }
 
+// euroc:DIR brings both its camera (sensor.yaml) and its ground truth (body poses through T_BS),
+// so neither --camera nor --gt is needed.
+TEST(GroundTruthSequence, EurocDatasetBringsItsCameraAndGroundTruth) {
+  const auto dir = test::freshTempDir("GroundTruthSequence_euroc");
+  std::vector<cv::Mat> images(3, cv::Mat(120, 160, CV_8UC1, cv::Scalar(90)));
+  const std::vector<long long> ns = {1000000000LL, 1050000000LL, 1100000000LL};
+  const RigidPose sensorToBody(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitY()).toRotationMatrix(),
+                               Eigen::Vector3d(0.02, -0.01, 0.0));
+  std::vector<std::pair<long long, RigidPose>> gt;
+  for (int k = 0; k < 3; ++k) gt.emplace_back(ns[static_cast<std::size_t>(k)], poseOf(k));
+  test::writeEurocSequence(dir, images, ns, testCamera(), sensorToBody, gt);
+  const GroundTruthSequence s = loadGroundTruthSequence({"euroc:" + dir.string(), "", "", 0});
+  ASSERT_EQ(s.frames.size(), 3u);
+  EXPECT_EQ(s.frames[0].type(), CV_8UC3);
+  EXPECT_NEAR(s.camera.fx(), 300.0, 1e-9);
+  EXPECT_NE(s.cameraDescription.find("sensor.yaml"), std::string::npos) << s.cameraDescription;
+  EXPECT_EQ(s.truthCount(), 3);
+  for (std::size_t k = 0; k < 3; ++k) {
+    EXPECT_LT(RigidPose::translationDistance(*s.truth[k], poseOf(static_cast<int>(k))), 1e-9);
+    EXPECT_LT(RigidPose::rotationDistance(*s.truth[k], poseOf(static_cast<int>(k))), 1e-9);
+  }
+}
+
 TEST(GroundTruthSequence, BadInputNamesWhatIsWrong) {
   const FolderFixture f("GroundTruthSequence_bad", 3, 0, 2);
   GroundTruthSequenceSpec spec = f.spec();
