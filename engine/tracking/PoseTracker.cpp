@@ -205,7 +205,8 @@ struct PoseTracker::Impl {
 
   // Each map point's covariance (camera A's frame) from its two-reference triangulation: the
   // information of A's and B's measurements, each with the variance the corner-variance model
-  // gives its corner (the frame's corners are weighted by the same model).
+  // gives its corner (the frame's corners are weighted by the same model), times
+  // pose.map_point_sd_scale squared.
   std::vector<Eigen::Matrix3d> pointCovariance;
   static Eigen::Matrix<double, 2, 3> projectionJacobian(const Eigen::Matrix3d& K,
                                                         const Eigen::Vector3d& X) {
@@ -225,7 +226,8 @@ struct PoseTracker::Impl {
       const double vA = varianceModel.variance(refA.contrast[static_cast<std::size_t>(m.cornerA)]);
       const double vB = varianceModel.variance(refB.contrast[static_cast<std::size_t>(m.cornerB)]);
       const Eigen::Matrix3d information = JA.transpose() * JA / vA + JB.transpose() * JB / vB;
-      pointCovariance.push_back(information.inverse());
+      const double scale = params.pose.mapPointSdScale;
+      pointCovariance.push_back(information.inverse() * (scale * scale));
     }
   }
 
@@ -577,7 +579,7 @@ std::vector<PoseTracker::Impl::Pair3D> PoseTracker::Impl::threeViewPairs(
 // Stage 7, outlier rejection: PnP-RANSAC on the 3D-2D pairs gives a robust linear pose; the
 // matches within the gate under it (epipolar distance for every match, reprojection for the
 // pairs) enter the estimator, weighted by their corners' variances (and the map points' own
-// uncertainty: pose.map_point_uncertainty). nullopt (with the reason in r) when too few remain.
+// uncertainty: pose.map_point_sd_scale). nullopt (with the reason in r) when too few remain.
 std::optional<PoseTracker::Impl::Inliers> PoseTracker::Impl::rejectOutliers(
     const FrameCorners& c, const FrameMatches& m, const Measurements& meas,
     const std::vector<Pair3D>& pairs, double gate, PoseTrackingResult& r) {
@@ -675,7 +677,7 @@ std::optional<PoseTracker::Impl::Inliers> PoseTracker::Impl::rejectOutliers(
     const double sigma =
         varianceModel.sigma(c.corners[static_cast<std::size_t>(p.frameCorner)].contrast);
     ThreeViewMatch t{P, pK, sigma};
-    if (params.pose.mapPointUncertainty)
+    if (params.pose.mapPointSdScale > 0)
       t.whitening = threeViewWhitening(TAkLin, p.mapMatch, sigma);
     in.measurements.threeView.push_back(t);
   }
@@ -859,6 +861,8 @@ void PoseTracker::setParams(const TrackerParams& params) {
   impl_->params = params;
   impl_->applyCornerParams();
   impl_->applyPoseParams();
+  impl_->computeDistinctiveCorners();
+  impl_->computePointCovariances();
 }
 void PoseTracker::setMotionModel(const ArMotionModel& model) {
   model.check();

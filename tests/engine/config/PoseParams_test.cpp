@@ -23,9 +23,9 @@ TEST(PoseParams, DefaultsAndRoundTrip) {
   EXPECT_DOUBLE_EQ(in.rollingShutterReadout, 0.0);  // global shutter unless told
   in.rollingShutterReadout = 0.6;
   EXPECT_FALSE(in.estimateRollingShutter);  // off unless asked for (real clips: README)
-  EXPECT_TRUE(in.mapPointUncertainty);
+  EXPECT_DOUBLE_EQ(in.mapPointSdScale, 0.5);
   in.estimateRollingShutter = true;
-  in.mapPointUncertainty = false;
+  in.mapPointSdScale = 0.0;
   PoseParams out;
   roundTrip(in, out);
   EXPECT_EQ(out.estimator, PoseEstimatorKind::Standard);
@@ -36,7 +36,7 @@ TEST(PoseParams, DefaultsAndRoundTrip) {
   EXPECT_EQ(out.motionModelFile, "model.yml");
   EXPECT_DOUBLE_EQ(out.rollingShutterReadout, 0.6);
   EXPECT_TRUE(out.estimateRollingShutter);
-  EXPECT_FALSE(out.mapPointUncertainty);
+  EXPECT_DOUBLE_EQ(out.mapPointSdScale, 0.0);
 }
 
 TEST(PoseParams, EveryBadFieldIsNamed) {
