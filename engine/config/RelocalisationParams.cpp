@@ -43,6 +43,8 @@ void RelocalisationParams::fields(Self& p, const Field& field) {
   field("max_rotation_sigma_deg", p.maxRotationSigmaDeg, Range{0.0, 180.0});
   field("max_position_sigma_ratio", p.maxPositionSigmaRatio, Range{0.0, 10.0});
   field("min_distinctive_inliers", p.minDistinctiveInliers, Range{0, 100000});
+  field("min_keypoint_support", p.minKeypointSupport, Range{0, 100000});
+  field("min_keypoint_agreement", p.minKeypointAgreement, Range{0.0, 1.0});
   field("triangulation_px", p.triangulationPx, Range{0.05, 100.0});
   field("min_parallax_deg", p.minParallaxDeg, Range{0.0, 90.0});
 }

@@ -60,11 +60,23 @@ struct RelocalisationParams : ParamSection<RelocalisationParams> {
   // Every start (near a reference, or from a relocalisation candidate) is confirmed on its frame
   // by the wide-baseline matching of every map point from its pose, and reported only when at
   // least this many of the confirmed matches are to distinctive reference corners
-  // (DistinctiveCorners: no look-alike within the search range). A pose one period off on
+  // (DistinctiveCorners: no look-alike within reach of the search). A pose one period off on
   // repeated texture (a chessboard) keeps its matches on the texture and loses the rest. Real desk
-  // clip, every frame a cold start (README "Cold starts"): wrong starts had at most 5, right ones
-  // a median of 22 and 95% at least 6.
+  // clip, references 0 and 40, every frame a cold start (README "Cold starts"): wrong starts had
+  // at most 5, right ones a median of 22 and 95% at least 6 ...
   int minDistinctiveInliers = 8;
+  // ... and, when the map has a keypoint layer, at least this many of the frame's ratio-test
+  // keypoint matches (no look-alike in the references), and this share of them, must agree with
+  // the pose within reprojection_px; a relocalisation candidate whose confirmed pose keeps
+  // min_inliers of its own ratio-test inliers is verified by them alone. Real desk clip, every
+  // frame a cold start, references 0/40, 200/240, 100/140 and 300/340: six starts two squares off
+  // (93 px, refs 200/240) had 13-18 distinctive corners but 4-10 agreeing keypoints, 3-7% of
+  // their matches; right starts had at least 16 and 22% with the three layers of 164-408 points,
+  // and 8-10 (6-7%) for four of 216 with the 74-point layer of refs 100/140 (refused: a sparse
+  // layer lets false matches through its ratio test). Relocalised views seeing mostly the
+  // chessboard had 5-7 distinctive corners but 25-50 kept inliers. 0, 0: no keypoint check.
+  int minKeypointSupport = 12;
+  double minKeypointAgreement = 0.10;
   // Keypoint layer (preparation): a keypoint gets a 3D point from a match with another view when
   // the match lies this close to its epipolar line and the triangulated point reprojects this
   // close in both views (pixels at 320x240), in front of both cameras, ...

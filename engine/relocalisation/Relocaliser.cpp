@@ -116,6 +116,8 @@ struct Relocaliser::Impl {
   std::vector<int> retrieve(const std::vector<cv::KeyPoint>& keypoints,
                             const cv::Mat& descriptors) const;
   RelocalisationAttempt locate(const cv::Mat& frame) const;
+  void checkFrame(const cv::Mat& frame) const;
+  KeypointSupport ratioTestSupport(const cv::Mat& frame, const RigidPose& worldToCamera) const;
   // The pose from the frame's keypoints matched to the references `matched` (indices into
   // references), guided matching and the acceptance; the first inliers must be at least
   // `minInlierRatio` of the matches.
@@ -170,6 +172,11 @@ Relocaliser::Relocaliser(const MultiReferenceMap& map, const RelocalisationParam
 Relocaliser::~Relocaliser() = default;
 
 const PinholeCamera& Relocaliser::camera() const { return impl_->camera; }
+
+KeypointSupport Relocaliser::ratioTestSupport(const cv::Mat& frame,
+                                              const RigidPose& worldToCamera) const {
+  return impl_->ratioTestSupport(frame, worldToCamera);
+}
 
 RelocalisationAttempt Relocaliser::locate(const cv::Mat& frame) const {
   const auto start = std::chrono::steady_clock::now();
@@ -296,7 +303,7 @@ void Relocaliser::Impl::guidedMatches(const std::vector<cv::KeyPoint>& keypoints
   }
 }
 
-RelocalisationAttempt Relocaliser::Impl::locate(const cv::Mat& frame) const {
+void Relocaliser::Impl::checkFrame(const cv::Mat& frame) const {
   const cv::Size size = camera.imageSize();
   if (frame.empty()) throw Error("relocalisation: empty frame");
   if (frame.size() != size)
@@ -305,6 +312,42 @@ RelocalisationAttempt Relocaliser::Impl::locate(const cv::Mat& frame) const {
                 std::to_string(size.width) + "x" + std::to_string(size.height));
   if (frame.depth() != CV_8U || (frame.channels() != 1 && frame.channels() != 3))
     throw Error("relocalisation: frame must be 8-bit grey or BGR");
+}
+
+KeypointSupport Relocaliser::Impl::ratioTestSupport(const cv::Mat& frame,
+                                                    const RigidPose& worldToCamera) const {
+  checkFrame(frame);
+  const cv::Size size = camera.imageSize();
+  std::vector<cv::KeyPoint> keypoints;
+  cv::Mat descriptors;
+  features.detectAndDescribe(frame, params.featuresPerFrameFor(size), keypoints, descriptors);
+  std::vector<Match> best(keypoints.size());
+  for (std::size_t r = 0; r < references.size(); ++r)
+    for (const cv::DMatch& m : matchDescriptors(descriptors, references[r].descriptors,
+                                                features.normType(), params.ratio, false)) {
+      Match& b = best[static_cast<std::size_t>(m.queryIdx)];
+      if (b.reference < 0 || m.distance < b.distance)
+        b = {static_cast<int>(r), m.trainIdx, m.distance};
+    }
+  const double threshold = params.reprojectionPx * resolutionScale(size);
+  KeypointSupport support;
+  for (std::size_t k = 0; k < best.size(); ++k) {
+    if (best[k].reference < 0) continue;
+    ++support.matches;
+    const cv::Point3f& X = references[static_cast<std::size_t>(best[k].reference)]
+                               .points[static_cast<std::size_t>(best[k].point)];
+    const Eigen::Vector3d Xc = worldToCamera * Eigen::Vector3d(X.x, X.y, X.z);
+    if (Xc.z() <= 0) continue;
+    const Eigen::Vector2d p = camera.projectDistorted(Xc);
+    support.agreeing +=
+        std::hypot(p.x() - keypoints[k].pt.x, p.y() - keypoints[k].pt.y) < threshold;
+  }
+  return support;
+}
+
+RelocalisationAttempt Relocaliser::Impl::locate(const cv::Mat& frame) const {
+  const cv::Size size = camera.imageSize();
+  checkFrame(frame);
 
   RelocalisationAttempt out;
   std::vector<cv::KeyPoint> keypoints;
@@ -436,6 +479,12 @@ RelocalisationAttempt Relocaliser::Impl::locateWith(const cv::Mat& frame,
   std::vector<double> errors;
   refine(object, image, threshold, rvec, tvec, inliers, errors);
   const int firstInliers = static_cast<int>(inliers.size());
+  std::vector<cv::Point3f> distinctivePoints;
+  std::vector<cv::Point2f> distinctivePixels;
+  for (int i : inliers) {
+    distinctivePoints.push_back(object[static_cast<std::size_t>(i)]);
+    distinctivePixels.push_back(image[static_cast<std::size_t>(i)]);
+  }
   const double ratio = static_cast<double>(firstInliers) / matches;
 
   // Guided matching: a far view sees the scene small, and the ratio test against whole
@@ -581,6 +630,8 @@ RelocalisationAttempt Relocaliser::Impl::locateWith(const cv::Mat& frame,
   c.inliers = n;
   c.matches = static_cast<int>(object.size());
   c.reprojectionRmsPx = std::sqrt(sum2 / n);
+  c.distinctivePoints = std::move(distinctivePoints);
+  c.distinctivePixels = std::move(distinctivePixels);
   out.candidate = c;
   out.message =
       "relocalised on reference " + std::to_string(c.reference) + " (" + supportText + ")";

@@ -9,6 +9,7 @@
 #include <opencv2/core.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "engine/config/RelocalisationParams.hpp"
 #include "engine/geometry/RigidPose.hpp"
@@ -23,6 +24,16 @@ struct RelocalisationCandidate {
   int inliers = 0;
   int matches = 0;
   double reprojectionRmsPx = 0.0;
+  // The inliers among the ratio-test matches (before the guided matching): keypoints whose
+  // descriptor has no look-alike in the references, with their 3D points (world) and their pixels
+  // in the frame (as detected, lens distortion included).
+  std::vector<cv::Point3f> distinctivePoints;
+  std::vector<cv::Point2f> distinctivePixels;
+};
+
+struct KeypointSupport {
+  int matches = 0;   // frame keypoints with a ratio-test match to a keypoint with a 3D point
+  int agreeing = 0;  // ... whose 3D point the pose projects within the inlier threshold
 };
 
 struct RelocalisationAttempt {
@@ -41,6 +52,11 @@ class Relocaliser {
   // BGR or grey, the map's size (else reftrack::Error); a frame without enough support (black,
   // textureless, another scene) gives no candidate and says why in the message.
   RelocalisationAttempt locate(const cv::Mat& frame) const;
+  // Support for a pose found otherwise (a start near a reference): the frame's keypoints'
+  // ratio-test matches to every reference's layer, and how many of them `worldToCamera` projects
+  // within the PnP inlier threshold. Such matches have no look-alike in the references, so a pose
+  // one period off on repeated texture gets few. Same frame contract as locate().
+  KeypointSupport ratioTestSupport(const cv::Mat& frame, const RigidPose& worldToCamera) const;
   const PinholeCamera& camera() const;
 
  private:

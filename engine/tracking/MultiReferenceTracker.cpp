@@ -2,12 +2,15 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "engine/config/ResolutionScale.hpp"
 #include "engine/core/Error.hpp"
 #include "engine/core/ThreadCpuClock.hpp"
 #include "engine/estimation/RollingShutterEstimator.hpp"
@@ -180,7 +183,9 @@ struct MultiReferenceTracker::Impl {
   PoseTrackingResult startNearReference(const cv::Mat& frame, ReferencePair& used);
   PoseTrackingResult relocalise(const cv::Mat& frame, ReferencePair& used,
                                 RelocalisationReport& relocalisation);
-  bool verified(PoseTrackingResult& r) const;
+  bool verified(PoseTrackingResult& r, const cv::Mat& frame,
+                const RelocalisationCandidate* candidate = nullptr) const;
+  int keptKeypointInliers(const RigidPose& worldToCamera, const RelocalisationCandidate& c) const;
 };
 
 MultiReferenceResult MultiReferenceTracker::Impl::process(const cv::Mat& frame) {
@@ -307,7 +312,7 @@ PoseTrackingResult MultiReferenceTracker::Impl::startNearReference(const cv::Mat
   t.seed(*r.worldToCamera);
   PoseTrackingResult confirmed = t.process(frame);
   confirmed.timings.insert(confirmed.timings.begin(), {"start", startMs});
-  if (!verified(confirmed)) {
+  if (!verified(confirmed, frame)) {
     t.reset();
     confirmed.message = "start near references not confirmed: " + confirmed.message;
     return confirmed;
@@ -317,21 +322,75 @@ PoseTrackingResult MultiReferenceTracker::Impl::startNearReference(const cv::Mat
 }
 
 // A start (near a reference, or from a relocalisation candidate) confirmed by its seeded pass is
-// reported only with enough matches to distinctive reference corners (DistinctiveCorners): on
-// repeated texture a pose a whole period off keeps the texture's matches and loses the rest.
-// Otherwise r is made Lost with the reason.
-bool MultiReferenceTracker::Impl::verified(PoseTrackingResult& r) const {
-  if (r.state != TrackingState::Tracking) return false;
-  const int needed = params.relocalisation.minDistinctiveInliers;
-  if (r.distinctiveInliers >= needed) return true;
+// reported only with enough support from distinctive reference features: on repeated texture a
+// pose a whole period off keeps the texture's matches and loses the rest. Distinctive are the
+// reference corners with no look-alike anywhere in their image (DistinctiveCorners) and the
+// keypoints whose matches passed the ratio test against whole references (when the map has a
+// keypoint layer). Both must support the pose; a relocalisation candidate whose confirmed pose
+// keeps minInliers of its own ratio-test inliers is verified by them alone (views of mostly
+// repeated texture have few distinctive corners). The figures: RelocalisationParams. Otherwise r
+// is made Lost with the reason.
+bool MultiReferenceTracker::Impl::verified(PoseTrackingResult& r, const cv::Mat& frame,
+                                           const RelocalisationCandidate* candidate) const {
+  if (r.state != TrackingState::Tracking || !r.worldToCamera) return false;
+  const RelocalisationParams& p = params.relocalisation;
+  const int kept = candidate ? keptKeypointInliers(*r.worldToCamera, *candidate) : -1;
+  if (kept >= p.minInliers) return true;
+  std::string why;
+  if (r.distinctiveInliers < p.minDistinctiveInliers) {
+    why = std::to_string(r.distinctiveInliers) +
+          " inlier matches to distinctive reference corners, " +
+          std::to_string(p.minDistinctiveInliers) +
+          " needed (relocalisation.min_distinctive_inliers)";
+    if (candidate)
+      why += ", and " + std::to_string(kept) + " of the relocaliser's " +
+             std::to_string(candidate->distinctivePoints.size()) + " ratio-test inliers kept, " +
+             std::to_string(p.minInliers) + " needed (relocalisation.min_inliers)";
+  } else if (relocaliser && (p.minKeypointSupport > 0 || p.minKeypointAgreement > 0)) {
+    KeypointSupport support;
+    if (candidate) {
+      support.matches = static_cast<int>(candidate->distinctivePoints.size());
+      support.agreeing = kept;
+    } else {
+      support = relocaliser->ratioTestSupport(frame, *r.worldToCamera);
+    }
+    const double share =
+        support.matches > 0 ? static_cast<double>(support.agreeing) / support.matches : 0.0;
+    if (support.agreeing >= p.minKeypointSupport && share >= p.minKeypointAgreement) return true;
+    char text[160];
+    std::snprintf(
+        text, sizeof text,
+        "%d of %d ratio-test keypoint matches (%.0f%%) agree with the pose, %d and %.0f%% "
+        "needed (relocalisation.min_keypoint_support, min_keypoint_agreement)",
+        support.agreeing, support.matches, 100.0 * share, p.minKeypointSupport,
+        100.0 * p.minKeypointAgreement);
+    why = text;
+  } else {
+    return true;
+  }
   r.state = TrackingState::Lost;
   r.worldToCamera.reset();
   r.T_Ak.reset();
-  r.message = "not verified: " + std::to_string(r.distinctiveInliers) +
-              " inlier matches to distinctive reference corners, " + std::to_string(needed) +
-              " needed (relocalisation.min_distinctive_inliers): on repeated texture the pose "
-              "could be a whole period off";
+  r.message = "not verified: " + why + ": on repeated texture the pose could be a whole period off";
   return false;
+}
+
+// How many of the candidate's ratio-test keypoint inliers `worldToCamera` projects (lens
+// distortion included) within the relocaliser's inlier threshold of their keypoints.
+int MultiReferenceTracker::Impl::keptKeypointInliers(const RigidPose& worldToCamera,
+                                                     const RelocalisationCandidate& c) const {
+  const double threshold =
+      params.relocalisation.reprojectionPx * resolutionScale(map.camera.imageSize());
+  int kept = 0;
+  for (std::size_t i = 0; i < c.distinctivePoints.size(); ++i) {
+    const cv::Point3f& X = c.distinctivePoints[i];
+    const Eigen::Vector3d Xc = worldToCamera * Eigen::Vector3d(X.x, X.y, X.z);
+    if (Xc.z() <= 0) continue;
+    const Eigen::Vector2d p = map.camera.projectDistorted(Xc);
+    kept +=
+        std::hypot(p.x() - c.distinctivePixels[i].x, p.y() - c.distinctivePixels[i].y) < threshold;
+  }
+  return kept;
 }
 
 // The Relocaliser's candidate, refined and verified by the pair best placed for it.
@@ -356,7 +415,7 @@ PoseTrackingResult MultiReferenceTracker::Impl::relocalise(const cv::Mat& frame,
     relocalisation.ms = msSince(start);
     relocalisation.cpuMs = threadCpuMs() - cpuStart;
     r.timings.insert(r.timings.begin(), {"relocalise", attempt.ms});
-    if (verified(r)) {
+    if (verified(r, frame, &*attempt.candidate)) {
       relocalisation.succeeded = true;
       relocalisation.message +=
           "; verified by references " + std::to_string(pair.a) + "+" + std::to_string(pair.b);

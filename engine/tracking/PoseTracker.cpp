@@ -191,7 +191,12 @@ struct PoseTracker::Impl {
   std::vector<char> distinctiveA, distinctiveB;  // per reference corner (DistinctiveCorners)
   // Repeated texture within reach of a start's search (the narrow-baseline window, the seed
   // search) can fool a start by a whole period; a look-alike correlating above the matcher's
-  // acceptance there makes a corner repeated.
+  // acceptance there makes a corner repeated. Not the whole image: generic corners (an L, a
+  // T-junction) find a look-alike somewhere in most images (the simulator's scenes kept 1-2
+  // distinctive corners that way). Nor enough alone: starts two chessboard squares off on the real
+  // desk clip kept 13-18 such corners (8-10 with look-alikes sought in the whole image); the
+  // keypoint check of MultiReferenceTracker's verification refuses them
+  // (relocalisation.min_keypoint_support).
   void computeDistinctiveCorners() {
     const double radius =
         1.5 * resolutionScale(map.camera.imageSize()) *

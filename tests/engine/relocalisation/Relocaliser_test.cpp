@@ -141,6 +141,28 @@ TEST_F(RelocaliserOnCornerWorld, AcceptsGreyAndBgrAndRefusesOtherSizes) {
   EXPECT_THROW(relocaliser.locate(wide), Error);
 }
 
+// The support a start near a reference is verified with: at the view's true pose a large share
+// of its ratio-test matches agree; the same view moved sideways by 5% of its distance (a start off
+// by a period of some texture) keeps almost none. Bad frames are refused as by locate().
+TEST_F(RelocaliserOnCornerWorld, RatioTestSupportSeparatesTheTruePoseFromAShiftedOne) {
+  const Relocaliser relocaliser(*map_, orb());
+  const RigidPose truth = test::randomViews(1, kViews, 11)[0];
+  const cv::Mat frame = world_->render(truth, 91);
+  const KeypointSupport right = relocaliser.ratioTestSupport(frame, truth);
+  const RigidPose shifted(truth.rotation(),
+                          truth.translation() + Eigen::Vector3d(0.05 * distance(truth), 0, 0));
+  const KeypointSupport off = relocaliser.ratioTestSupport(frame, shifted);
+  EXPECT_EQ(off.matches, right.matches);  // the matches do not depend on the pose
+  EXPECT_GE(right.agreeing, 30) << "of " << right.matches;
+  EXPECT_GE(right.agreeing, right.matches / 3) << "true pose";
+  EXPECT_LE(off.agreeing, right.agreeing / 10)
+      << "shifted pose: " << off.agreeing << " of the true pose's " << right.agreeing;
+  EXPECT_THROW(relocaliser.ratioTestSupport(cv::Mat(), truth), Error);
+  cv::Mat small;
+  cv::resize(frame, small, {320, 240});
+  EXPECT_THROW(relocaliser.ratioTestSupport(small, truth), Error);
+}
+
 // Far views (2.6-3.2x the references' distance, 25-40 degrees off a reference's direction): the
 // scene is small in the frame, and the references' finest keypoints lie below the frame's finest
 // ORB scale. The second detection with upsampled frame levels must relocalise more of them than
