@@ -98,7 +98,7 @@ TEST(TrackerParams, UnknownKeysAndSectionsNameTheNearestKnownOne) {
   };
   EXPECT_EQ(bad("ransac: {iterations: 200}\n"),
             "parameter file '" + (dir / "p.yml").string() +
-                "': ransac.iterations: unknown key — did you mean ransac.max_iterations?");
+                "': line 2: ransac.iterations: unknown key — did you mean ransac.max_iterations?");
   EXPECT_NE(bad("ransca:\n  max_iterations: 200\n")
                 .find("ransca: unknown section — did you mean ransac?"),
             std::string::npos);
@@ -117,4 +117,57 @@ TEST(TrackerParams, ReadsAHandWrittenFileWithoutTheYamlDirective) {
       writeText(dir / "p.yml", "# mine\nmode: homography\nransac: {max_iterations: 33}\n"));
   EXPECT_EQ(p.mode, TrackingMode::Homography);
   EXPECT_EQ(p.ransac.maxIterations, 33);
+}
+
+// The targets: ordinary YAML (a flow map, a trailing comment, an anchor and an alias) is
+// read and used; a misspelt key in a flow map is refused naming its line and the right key.
+TEST(TrackerParams, ReadsOrdinaryYamlAndRefusesAMisspeltKeyWithItsLine) {
+  const auto dir = freshTempDir("TrackerParams_ordinaryYaml");
+  const TrackerParams p = TrackerParams::load(writeText(dir / "p.yml",
+                                                        "mode: 6dof   # the default, said aloud\n"
+                                                        "ransac: {max_iterations: &iterations 80, "
+                                                        "seed: 3}  # flow map\n"
+                                                        "relocalisation:\n"
+                                                        "  # an alias of the RANSAC cap\n"
+                                                        "  ransac_iterations: *iterations\n"));
+  EXPECT_EQ(p.ransac.maxIterations, 80);
+  EXPECT_EQ(p.ransac.seed, 3);
+  EXPECT_EQ(p.relocalisation.ransacIterations, 80);
+  EXPECT_NE(TrackerParams{}.relocalisation.ransacIterations, 80);  // it was read, not a default
+
+  const auto file = writeText(dir / "typo.yml",
+                              "mode: 6dof\n# tuned for the desk\nransac: {max_iteratons: 80}\n");
+  EXPECT_EQ(
+      errorMessage([&] { TrackerParams::load(file); }),
+      "parameter file '" + file.string() +
+          "': line 3: ransac.max_iteratons: unknown key — did you mean ransac.max_iterations?");
+  // A bad value names its line and key too.
+  const auto value = writeText(dir / "value.yml", "ransac:\n  seed: 1\n  max_iterations: -5\n");
+  EXPECT_EQ(errorMessage([&] { TrackerParams::load(value); }),
+            "parameter file '" + value.string() +
+                "': line 3: parameter 'ransac.max_iterations' must lie in [1, 1000000], got -5");
+}
+
+TEST(TrackerParams, ParsesYamlOrJsonText) {
+  EXPECT_EQ(
+      TrackerParams::parse("{\"ransac\": {\"max_iterations\": 90}}", "dict").ransac.maxIterations,
+      90);
+  EXPECT_EQ(errorMessage([] { TrackerParams::parse("{\"ransac\": {\"seeds\": 1}}", "dict"); }),
+            "dict: line 1: ransac.seeds: unknown key — did you mean ransac.seed?");
+  EXPECT_EQ(TrackerParams::parse("", "empty").ransac.maxIterations,
+            TrackerParams{}.ransac.maxIterations);
+}
+
+// README.md's example parameter file ("Tracking parameters"), read as written.
+TEST(TrackerParams, ReadsTheReadmesExample) {
+  const std::string readme = readTextFile(sourceDir() / "README.md");
+  const std::size_t start = readme.find("```yaml\n", readme.find("### Tracking parameters"));
+  ASSERT_NE(start, std::string::npos);
+  const std::size_t end = readme.find("```", start + 8);
+  const TrackerParams p =
+      TrackerParams::parse(readme.substr(start + 8, end - start - 8), "README example");
+  EXPECT_EQ(p.mode, TrackingMode::SixDof);
+  EXPECT_EQ(p.ransac.maxIterations, 80);
+  EXPECT_EQ(p.ransac.seed, 3);
+  EXPECT_EQ(p.relocalisation.ransacIterations, 80);
 }

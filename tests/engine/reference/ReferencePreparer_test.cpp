@@ -11,6 +11,7 @@
 #include "ErrorMessage.hpp"
 #include "PlanarTestScene.hpp"
 #include "TestPaths.hpp"
+#include "engine/config/ConfigFile.hpp"
 #include "engine/core/Error.hpp"
 
 using namespace reftrack;
@@ -248,10 +249,15 @@ TEST(ReferencePreparerParams, UnknownKeysNameTheNearestAndTheYamlLineIsOptional)
   EXPECT_EQ(load("matching:\n  max_peak_offset_px: 2\n"), "(no error)");
   EXPECT_EQ(load("marker: {ambiguity_ratio: 1.7}\n"), "(no error)");
   // A caller that reads more sections from the same file names them.
-  const cv::FileStorage extend("%YAML:1.0\nextension: {max_angle_deg: 10}\n",
-                               cv::FileStorage::READ | cv::FileStorage::MEMORY);
+  const YamlNode extend = readConfigText("%YAML:1.0\nextension: {max_angle_deg: 10}\n", "f");
   ReferencePreparerParams p;
-  EXPECT_NE(test::errorMessage([&] { p.read(extend.root()); }).find("extension: unknown section"),
+  EXPECT_NE(test::errorMessage([&] { p.read(extend); }).find("line 2: extension: unknown section"),
             std::string::npos);
-  EXPECT_EQ(test::errorMessage([&] { p.read(extend.root(), {"extension"}); }), "(no error)");
+  EXPECT_EQ(test::errorMessage([&] { p.read(extend, {"extension"}); }), "(no error)");
+  // A value out of range in a hand-read section names its line too.
+  EXPECT_EQ(
+      test::errorMessage(
+          [&] { p.read(readConfigText("preparation:\n  min_baseline_m: -1\n", "f")); }),
+      "line 2: parameter 'preparation.min_baseline_m' must lie in [0.000000, 1000000.000000], "
+      "got -1.000000");
 }
