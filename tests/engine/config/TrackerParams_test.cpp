@@ -171,3 +171,55 @@ TEST(TrackerParams, ReadsTheReadmesExample) {
   EXPECT_EQ(p.ransac.seed, 3);
   EXPECT_EQ(p.relocalisation.ransacIterations, 80);
 }
+
+// The keys main added in issue 24 (pose.map_point_sd_scale replacing the bool
+// pose.map_point_uncertainty, relocalisation.min_distinctive_inliers, wide_baseline's frame-side
+// alignment) are read by the YAML reader, in flow or block style, and a bad value names its line.
+TEST(TrackerParams, ReadsTheRealFootageKeysWithTheirLines) {
+  const TrackerParams defaults;
+  EXPECT_DOUBLE_EQ(defaults.pose.mapPointSdScale, 0.5);
+  EXPECT_FALSE(defaults.pose.estimateRollingShutter);
+  EXPECT_EQ(defaults.relocalisation.keypoints, "sift");
+  EXPECT_EQ(defaults.relocalisation.minDistinctiveInliers, 8);
+  EXPECT_FALSE(defaults.wideBaseline.alignFrameSide);
+  EXPECT_EQ(defaults.wideBaseline.alignHalfWindow, 7);
+
+  const TrackerParams p = TrackerParams::parse(
+      "pose: {map_point_sd_scale: 0.25, estimate_rolling_shutter: true}  # flow\n"
+      "relocalisation:\n"
+      "  keypoints: orb\n"
+      "  min_distinctive_inliers: 5\n"
+      "wide_baseline: {align_frame_side: true, align_half_window: 4}\n",
+      "text");
+  EXPECT_DOUBLE_EQ(p.pose.mapPointSdScale, 0.25);
+  EXPECT_TRUE(p.pose.estimateRollingShutter);
+  EXPECT_EQ(p.relocalisation.keypoints, "orb");
+  EXPECT_EQ(p.relocalisation.minDistinctiveInliers, 5);
+  EXPECT_TRUE(p.wideBaseline.alignFrameSide);
+  EXPECT_EQ(p.wideBaseline.alignHalfWindow, 4);
+
+  EXPECT_EQ(errorMessage([] {
+              TrackerParams::parse("mode: 6dof\npose:\n  map_point_uncertainty: true\n", "text");
+            }),
+            "text: line 3: pose.map_point_uncertainty: unknown key — did you mean "
+            "pose.map_point_sd_scale?");
+  EXPECT_EQ(
+      errorMessage(
+          [] { TrackerParams::parse("wide_baseline:\n  align_half_window: 40\n", "text"); }),
+      "text: line 2: parameter 'wide_baseline.align_half_window' must lie in [1, 32], got 40");
+  const std::string notANumber = errorMessage(
+      [] { TrackerParams::parse("relocalisation: {min_distinctive_inliers: many}\n", "text"); });
+  EXPECT_EQ(notANumber.rfind("text: line 1: ", 0), 0u) << notANumber;
+  EXPECT_NE(notANumber.find("relocalisation.min_distinctive_inliers"), std::string::npos)
+      << notANumber;
+}
+
+// The parameter-file fuzz target's seed of the defaults (tests/fuzz/corpus/params_file) is what
+// save() writes today, so the fuzzer starts from every key the reader knows.
+TEST(TrackerParams, TheFuzzSeedOfTheDefaultsIsWhatSaveWrites) {
+  const auto dir = freshTempDir("TrackerParams_fuzzSeed");
+  TrackerParams{}.save(dir / "defaults.yml");
+  EXPECT_EQ(readTextFile(sourceDir() / "tests/fuzz/corpus/params_file/tracker_defaults.yml"),
+            readTextFile(dir / "defaults.yml"))
+      << "refresh the seed: copy " << (dir / "defaults.yml").string();
+}
