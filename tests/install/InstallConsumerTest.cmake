@@ -60,6 +60,16 @@ if(PYTHON)
   if(from_prefix EQUAL -1)
     message(FATAL_ERROR "import reftrack: not the installed module: ${step_output}")
   endif()
+  # Installed under CMake's default prefix (/usr/local) or /usr, python3 finds it unaided.
+  step("python3's path" ${CMAKE_COMMAND} -E env --unset=PYTHONPATH ${PYTHON} -c
+       "import sys\nprint(*sys.path, sep='\\n')")
+  string(REPLACE "\n" ";" python_path "${step_output}")
+  foreach(system_prefix /usr/local /usr)
+    if(NOT "${system_prefix}/${PYTHON_DIR}" IN_LIST python_path)
+      message(FATAL_ERROR "${system_prefix}/${PYTHON_DIR} is not on ${PYTHON}'s path: "
+                          "${step_output}")
+    endif()
+  endforeach()
 endif()
 
 # Only the temporary prefix: no package registry, so the build tree cannot stand in for it.
