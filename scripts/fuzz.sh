@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets of tests/fuzz (clang, AddressSanitizer + UndefinedBehaviorSanitizer,
 # own build folder) and runs each for SECONDS (default 60) from its seed corpus in
-# tests/fuzz/corpus/<target>/. Prints the executions per target; exits 1 on any crash, hang
+# tests/fuzz/corpus/<target>/. Prints the executions, their rate and the slowest input of the
+# corpus it grew (each replayed once afterwards: ms in the instrumented build) per target; exits 1
+# on any crash, hang
 # (> 1 s per input) or leak, leaving the input in $build/artifacts/<target>/.
 # Usage: scripts/fuzz.sh [SECONDS] [TARGET...]   (REFTRACK_FUZZ_BUILD_DIR, default build-fuzz;
 # REFTRACK_FUZZ_RUNS=N stops each target after N executions, e.g. `REFTRACK_FUZZ_RUNS=1000000
@@ -28,7 +30,7 @@ if [ ${#targets[@]} -eq 0 ]; then
 fi
 
 failed=()
-printf '%-26s %12s %10s %s\n' target executions exec/s result
+printf '%-26s %12s %10s %11s %s\n' target executions exec/s slowest/ms result
 for target in "${targets[@]}"; do
   name="${target#fuzz_}"
   corpus="$build/corpus/$name"       # grows as the fuzzer finds new inputs; seeds stay clean
@@ -48,7 +50,13 @@ for target in "${targets[@]}"; do
   [ "$slow" -eq 0 ] || result="$result ($slow slow unit(s) > 1 s in $artifacts: replay them)"
   runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
   rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log" | tail -1)
-  printf '%-26s %12s %10s %s\n' "$target" "${runs:-?}" "${rate:-?}" "$result"
+  # Each input of the grown corpus once more, timed by libFuzzer ("Executed FILE in N ms"); a seed
+  # runs first in each process and is not counted (the first input pays one-time set-up).
+  warmup=$(find "$root/tests/fuzz/corpus/$name" -type f | sort | head -1)
+  slowest=$(find "$corpus" -type f -print0 |
+    xargs -0 -r -n 500 "$build/tests/fuzz/$target" "$warmup" 2>&1 | grep -vF "Executed $warmup " |
+    sed -n 's/^Executed .* in \([0-9]*\) ms$/\1/p' | sort -n | tail -1) || true
+  printf '%-26s %12s %10s %11s %s\n' "$target" "${runs:-?}" "${rate:-?}" "${slowest:-?}" "$result"
 done
 
 if [ ${#failed[@]} -ne 0 ]; then

@@ -14,6 +14,8 @@ PACKAGES=(
   libosmesa6-dev libegl-dev             # off-screen GL (OSMesa; EGL surfaceless kept possible)
   python3-glad                          # GL loader generator (build time)
   libtinyobjloader-dev libcli11-dev libgtest-dev
+  libyaml-cpp-dev                       # YAML 1.2 parser for user-written files (yaml-cpp 0.7)
+  pybind11-dev python3-dev python3-numpy python3-opencv  # the Python module `reftrack`
   xvfb xauth                            # window tests on a headless machine
   ffmpeg                                # ffprobe checks recorded MP4s; video codecs
   libavformat-dev libavcodec-dev libswscale-dev libavutil-dev  # the recorder's fragmented MP4

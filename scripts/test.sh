@@ -24,8 +24,7 @@ bash "$root/scripts/build.sh" Release
 build="${REFTRACK_BUILD_DIR:-$root/build}"
 ctest --test-dir "$build" --output-on-failure -j "$(nproc)" --timeout 900
 # Under CI, each fuzz target briefly (tests/fuzz; ~15 s each) when clang can link a fuzzer; a
-# finding fails the run (user YAML is checked by engine/config/YamlSubsetValidator before OpenCV's
-# parser, whose hangs made findings non-fatal before).
+# finding fails the run (user YAML is read by yaml-cpp: engine/config/YamlTree).
 if [ "${CI:-}" = "true" ] && bash "$root/scripts/fuzz-available.sh"; then
   bash "$root/scripts/fuzz.sh" "${REFTRACK_CI_FUZZ_SECONDS:-15}"
 fi

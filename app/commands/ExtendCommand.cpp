@@ -31,7 +31,7 @@ MapExtenderParams loadParams(const ExtendOptions& o) {
   if (!o.params.empty()) p.tracker = TrackerParams::load(o.params);
   p.tracker.mode = TrackingMode::SixDof;
   if (!o.extendParams.empty())
-    readParameterFile(o.extendParams, [&](const cv::FileNode& root) {
+    readParameterFile(o.extendParams, [&](const YamlNode& root) {
       p.extension.read(root["extension"]);
       p.bundleAdjustment.read(root["bundle_adjustment"]);
       p.preparation.read(root, {"extension", "bundle_adjustment"});

@@ -26,9 +26,9 @@ void OverlaySettings::fields(Self& p, const Field& field) {
   field("show_labels", p.showLabels, WrittenAsNumber{});
 }
 
-void OverlaySettings::read(const cv::FileNode& node) {
-  if (node.empty() || node.isNone()) return;
-  if (!node.isMap()) throw Error("section 'overlay' must be a map");
+void OverlaySettings::read(const YamlNode& node) {
+  if (!node.present() || node.isNull()) return;
+  if (!node.isMap()) node.fail("section 'overlay' must be a map");
   readFields(*this, node);
   check();
 }

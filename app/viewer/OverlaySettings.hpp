@@ -30,7 +30,7 @@ struct OverlaySettings : ParamSection<OverlaySettings> {
   template <class Self, class Field>  // its keys, in order: ParamFields.hpp
   static void fields(Self& self, const Field& field);
   // As ParamSection's, but an absent section is left alone and one that is not a map refused.
-  void read(const cv::FileNode& node);
+  void read(const YamlNode& node);
 };
 
 }  // namespace reftrack::app

@@ -12,7 +12,7 @@ void ViewerSettings::check() const {
 ViewerSettings ViewerSettings::load(const std::filesystem::path& file) {
   ViewerSettings s;
   s.tracker = TrackerParams::load(file);  // names the file and key on error
-  readParameterFile(file, [&](const cv::FileNode& root) { s.overlay.read(root["overlay"]); });
+  readParameterFile(file, [&](const YamlNode& root) { s.overlay.read(root["overlay"]); });
   return s;
 }
 

@@ -152,6 +152,12 @@ Tracker Tracker::openMap(const std::filesystem::path& mapFolder, const TrackerPa
 Tracker Tracker::openReference(const std::filesystem::path& referenceImage,
                                const std::filesystem::path& cameraFile,
                                const TrackerOptions& options) {
+  return openReference(referenceImage, cameraFile, loadParams(options, TrackingMode::Homography));
+}
+
+Tracker Tracker::openReference(const std::filesystem::path& referenceImage,
+                               const std::filesystem::path& cameraFile,
+                               const TrackerParams& params) {
   if (!std::filesystem::is_regular_file(referenceImage))
     throw Error("reference image '" + referenceImage.string() + "' does not exist");
   const cv::Mat reference = cv::imread(referenceImage.string(), cv::IMREAD_COLOR);
@@ -168,7 +174,7 @@ Tracker Tracker::openReference(const std::filesystem::path& referenceImage,
                   std::to_string(reference.rows));
     K = camera.K();
   }
-  return openReference(reference, K, loadParams(options, TrackingMode::Homography));
+  return openReference(reference, K, params);
 }
 
 Tracker Tracker::openReference(const cv::Mat& reference, const std::optional<Eigen::Matrix3d>& K,

@@ -56,6 +56,9 @@ class Tracker {
   static Tracker openReference(const std::filesystem::path& referenceImage,
                                const std::filesystem::path& cameraFile = {},
                                const TrackerOptions& = {});
+  static Tracker openReference(const std::filesystem::path& referenceImage,
+                               const std::filesystem::path& cameraFile,
+                               const TrackerParams& params);
   static Tracker openReference(const cv::Mat& reference, const std::optional<Eigen::Matrix3d>& K,
                                const TrackerParams& params);
 

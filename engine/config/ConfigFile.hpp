@@ -1,29 +1,24 @@
 #pragma once
-// ConfigFile: opens a user-written YAML file for reading with OpenCV's FileStorage, after
-// YamlSubsetValidator has checked that it keeps to the YAML subset reftrack writes (OpenCV 4.6's
-// parser hangs on some texts outside it). The `%YAML:1.0` first line may be left out. Every
-// reader of a user's YAML (parameters, camera.yml, motion.yml, labels, maps) opens it here.
+// ConfigFile: reads a user-written YAML file — parameters, camera.yml, motion.yml, labels,
+// map.yml, EuRoC's sensor.yaml — into a YamlNode tree (YamlTree.hpp: YAML 1.2 by yaml-cpp, with
+// or without the `%YAML:1.0` line OpenCV writes). Every reader of a user's YAML opens it here.
 #include <filesystem>
-#include <opencv2/core.hpp>
 #include <string>
+
+#include "engine/config/YamlNode.hpp"
 
 namespace reftrack {
 
-// `text` without a UTF-8 byte-order mark, with "%YAML:1.0\n" in front unless it starts with a
-// '%' directive line.
-std::string withYamlDirective(const std::string& text);
+// Parses `text`; the root is a map, or null when the text holds no value (an empty file: every
+// key absent). Throws reftrack::Error "<what> <invalid>: line <n>: <what is wrong>" when it is
+// not valid YAML, and "<what> must hold a map of key: value at the top level" when its root is a
+// list or a single value.
+YamlNode readConfigText(const std::string& text, const std::string& what,
+                        const std::string& invalid = "is not valid YAML");
 
-// Parses `text` (withYamlDirective applied) as YAML. Throws reftrack::Error "<what> <invalid>: line
-// <n>: <what is wrong>" when it leaves the subset, "<what> <invalid>: <OpenCV's reason>" when
-// OpenCV cannot parse it, and "<what>: <key> is not a valid matrix: ..." when an
-// OpenCV matrix's header (rows, cols, dt) disagrees with its data (which OpenCV would allocate
-// before checking).
-cv::FileStorage openConfigText(const std::string& text, const std::string& what,
-                               const std::string& invalid = "is not valid YAML");
-
-// Reads `file` and parses it as openConfigText does; an unreadable file throws
+// Reads `file` and parses it as readConfigText does; an unreadable file throws
 // "<what> cannot be read". The caller reports a missing file in its own words first.
-cv::FileStorage openConfigFile(const std::filesystem::path& file, const std::string& what,
-                               const std::string& invalid = "is not valid YAML");
+YamlNode readConfigFile(const std::filesystem::path& file, const std::string& what,
+                        const std::string& invalid = "is not valid YAML");
 
 }  // namespace reftrack

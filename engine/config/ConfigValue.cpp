@@ -1,5 +1,6 @@
 #include "engine/config/ConfigValue.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "engine/config/ConfigFile.hpp"
@@ -10,73 +11,70 @@ namespace reftrack {
 
 namespace {
 
-std::string fieldName(const std::string& sectionName, const std::string& key) {
-  return sectionName.empty() ? key : sectionName + "." + key;
+// The node for `key`, absent when the key or the whole section is (defaults stay).
+YamlNode lookup(const YamlNode& section, const std::string& key) {
+  if (section.present() && !section.isNull() && !section.isMap())
+    section.fail("parameter section '" + section.name() + "' must be a map of key: value");
+  return section[key];
 }
 
-// The node for `key`, or an empty node when the key is absent (defaults stay).
-cv::FileNode lookup(const cv::FileNode& section, const std::string& sectionName,
-                    const std::string& key) {
-  if (section.empty() || section.isNone()) return cv::FileNode();
-  if (!section.isMap())
-    throw Error("parameter section '" + sectionName + "' must be a map of key: value");
-  return section[key];
+[[noreturn]] void mustBe(const YamlNode& n, const std::string& what) {
+  n.fail("parameter '" + n.name() + "' must be " + what);
 }
 
 }  // namespace
 
-void readConfigValue(const cv::FileNode& section, const std::string& sectionName,
-                     const std::string& key, double& value) {
-  const cv::FileNode n = lookup(section, sectionName, key);
-  if (n.empty()) return;
-  if (!n.isReal() && !n.isInt())
-    throw Error("parameter '" + fieldName(sectionName, key) + "' must be a number");
-  const double v = static_cast<double>(n);
-  if (!std::isfinite(v))
-    throw Error("parameter '" + fieldName(sectionName, key) + "' must be finite (got NaN/inf)");
-  value = v;
+void readConfigValue(const YamlNode& section, const std::string& key, double& value) {
+  const YamlNode n = lookup(section, key);
+  if (!n.present()) return;
+  const std::optional<double> v = n.number();
+  if (!v) mustBe(n, "a number");
+  if (!std::isfinite(*v)) mustBe(n, "finite (got NaN/inf)");
+  value = *v;
 }
 
-void readConfigValue(const cv::FileNode& section, const std::string& sectionName,
-                     const std::string& key, int& value) {
-  const cv::FileNode n = lookup(section, sectionName, key);
-  if (n.empty()) return;
-  if (!n.isInt()) throw Error("parameter '" + fieldName(sectionName, key) + "' must be an integer");
-  value = static_cast<int>(n);
+void readConfigValue(const YamlNode& section, const std::string& key, int& value) {
+  const YamlNode n = lookup(section, key);
+  if (!n.present()) return;
+  const std::optional<int> v = n.integer();
+  if (!v) mustBe(n, "an integer");
+  value = *v;
 }
 
-void readConfigValue(const cv::FileNode& section, const std::string& sectionName,
-                     const std::string& key, bool& value) {
-  const cv::FileNode n = lookup(section, sectionName, key);
-  if (n.empty()) return;
-  // OpenCV's YAML reader stores true/false as the strings "true"/"false"; 0/1 as integers.
-  if (n.isInt()) {
-    const int v = static_cast<int>(n);
-    if (v != 0 && v != 1)
-      throw Error("parameter '" + fieldName(sectionName, key) + "' must be true or false");
-    value = v == 1;
-    return;
-  }
-  if (n.isString()) {
-    const std::string s = static_cast<std::string>(n);
-    if (s == "true" || s == "True" || s == "TRUE") {
-      value = true;
-      return;
+void readConfigValue(const YamlNode& section, const std::string& key, bool& value) {
+  const YamlNode n = lookup(section, key);
+  if (!n.present()) return;
+  const std::optional<bool> v = n.boolean();
+  if (!v) mustBe(n, "true or false");
+  value = *v;
+}
+
+void readConfigValue(const YamlNode& section, const std::string& key, std::string& value) {
+  const YamlNode n = lookup(section, key);
+  if (!n.present()) return;
+  const std::optional<std::string> v = n.text();
+  if (!v) mustBe(n, "text");
+  value = *v;
+}
+
+void checkWithLines(const YamlNode& root, const std::function<void()>& check) {
+  try {
+    check();
+  } catch (const Error& e) {
+    const std::string message = e.what(), prefix = "parameter '";
+    const std::size_t start = message.rfind(prefix, 0) == 0 ? prefix.size() : std::string::npos;
+    const std::size_t end = start == std::string::npos ? start : message.find('\'', start);
+    if (end == std::string::npos) throw;
+    YamlNode node = root;
+    const std::string name = message.substr(start, end - start);
+    for (std::size_t from = 0; from <= name.size() && node.isMap();) {
+      const std::size_t dot = std::min(name.find('.', from), name.size());
+      node = node[name.substr(from, dot - from)];
+      from = dot + 1;
     }
-    if (s == "false" || s == "False" || s == "FALSE") {
-      value = false;
-      return;
-    }
+    if (node.present() && node.name() == name) node.fail(message);
+    throw;
   }
-  throw Error("parameter '" + fieldName(sectionName, key) + "' must be true or false");
-}
-
-void readConfigValue(const cv::FileNode& section, const std::string& sectionName,
-                     const std::string& key, std::string& value) {
-  const cv::FileNode n = lookup(section, sectionName, key);
-  if (n.empty()) return;
-  if (!n.isString()) throw Error("parameter '" + fieldName(sectionName, key) + "' must be text");
-  value = static_cast<std::string>(n);
 }
 
 void requireFiniteInRange(const std::string& field, double value, double lo, double hi) {
@@ -92,17 +90,25 @@ void requireIntInRange(const std::string& field, int value, int lo, int hi) {
                 std::to_string(hi) + "], got " + std::to_string(value));
 }
 
+void readParameterText(const std::string& text, const std::string& what,
+                       const std::function<void(const YamlNode& root)>& read) {
+  const YamlNode root = readConfigText(text, what);
+  try {
+    read(root);
+  } catch (const Error& e) {
+    throw Error(what + ": " + e.what());
+  }
+}
+
 void readParameterFile(const std::filesystem::path& file,
-                       const std::function<void(const cv::FileNode& root)>& read) {
+                       const std::function<void(const YamlNode& root)>& read) {
   const std::string where = "parameter file '" + file.string() + "'";
   if (!std::filesystem::exists(file)) throw Error(where + " does not exist");
-  cv::FileStorage fs = openConfigFile(file, where);
+  const YamlNode root = readConfigFile(file, where);
   try {
-    read(fs.root());
+    read(root);
   } catch (const Error& e) {
     throw Error(where + ": " + e.what());
-  } catch (const cv::Exception& e) {
-    throw Error(where + " has a malformed entry: " + e.err);
   }
 }
 

@@ -4,46 +4,46 @@
 #include <limits>
 #include <numeric>
 
+#include "engine/config/YamlTree.hpp"
 #include "engine/core/Error.hpp"
 
 namespace reftrack {
 
 namespace {
 
-std::string dotted(const std::string& path, const std::string& key) {
-  return path.empty() ? key : path + "." + key;
-}
-
-std::vector<std::string> keysOf(const cv::FileNode& map) {
+std::vector<std::string> keysOf(const YamlNode& map) {
   std::vector<std::string> keys;
-  for (const cv::FileNode& child : map) keys.push_back(child.name());
+  for (const YamlNode& child : map.children()) keys.push_back(child.key());
   return keys;
 }
 
-[[noreturn]] void throwUnknown(const cv::FileNode& child, const std::string& path,
-                               const std::vector<std::string>& known) {
-  const std::string key = child.name();
-  // A section is a map of keys; an OpenCV matrix (a map with its element type `dt`) is a value.
-  const bool section = child.isMap() && child["dt"].empty();
-  std::string message = dotted(path, key) + ": unknown " + (section ? "section" : "key") + " — ";
-  const std::string nearest = nearestKey(key, known);
-  if (nearest.empty())
+[[noreturn]] void throwUnknown(const YamlNode& child, const std::vector<std::string>& known) {
+  const std::string& path = child.name();
+  const std::string parent = path.substr(0, path.size() - child.key().size());  // "a.b." or ""
+  // A section is a map of keys; an OpenCV matrix is a value.
+  const bool section = child.isMap() && !child.isOpenCvMatrix();
+  std::string message = path + ": unknown " + (section ? "section" : "key") + " — ";
+  const std::string nearest = nearestKey(child.key(), known);
+  if (child.key() == "<<")
+    message +=
+        "'<<' merges maps in YAML 1.1 only; write the keys out (an alias may stand for a "
+        "whole section)";
+  else if (nearest.empty())
     message += "this map takes no keys";
   else
-    message += "did you mean " + dotted(path, nearest) + "?";
-  throw Error(message);
+    message += "did you mean " + parent + nearest + "?";
+  child.fail(message);
 }
 
-void requireKnownTree(const cv::FileNode& node, const std::string& path, const cv::FileNode& known,
+void requireKnownTree(const YamlNode& node, const YamlNode& known,
                       const std::vector<std::string>& alsoKnown) {
-  if (node.empty() || !node.isMap()) return;
+  if (!node.isMap()) return;
   std::vector<std::string> knownKeys = keysOf(known);
   knownKeys.insert(knownKeys.end(), alsoKnown.begin(), alsoKnown.end());
-  requireKnownKeys(node, path, knownKeys);
-  for (const cv::FileNode& child : node) {
-    const cv::FileNode knownChild = known[child.name()];
-    if (child.isMap() && !knownChild.empty() && knownChild.isMap())
-      requireKnownTree(child, dotted(path, child.name()), knownChild, {});
+  requireKnownKeys(node, knownKeys);
+  for (const YamlNode& child : node.children()) {
+    const YamlNode knownChild = known[child.key()];
+    if (child.isMap() && knownChild.isMap()) requireKnownTree(child, knownChild, {});
   }
 }
 
@@ -88,24 +88,23 @@ std::string nearestKey(std::string_view key, const std::vector<std::string>& can
   return best;
 }
 
-void requireKnownKeys(const cv::FileNode& node, const std::string& path,
-                      const std::vector<std::string>& known) {
-  if (node.empty() || !node.isMap()) return;
-  for (const cv::FileNode& child : node)
-    if (std::find(known.begin(), known.end(), child.name()) == known.end())
-      throwUnknown(child, path, known);
+void requireKnownKeys(const YamlNode& node, const std::vector<std::string>& known) {
+  if (!node.isMap()) return;
+  for (const YamlNode& child : node.children())
+    if (std::find(known.begin(), known.end(), child.key()) == known.end())
+      throwUnknown(child, known);
 }
 
-void requireKeysWrittenBy(const cv::FileNode& node, const std::string& path,
+void requireKeysWrittenBy(const YamlNode& node,
                           const std::function<void(cv::FileStorage&)>& writeDefaults,
                           const std::vector<std::string>& alsoKnown) {
-  if (node.empty() || !node.isMap()) return;
+  if (!node.isMap()) return;
   cv::FileStorage out(
       ".yml", cv::FileStorage::WRITE | cv::FileStorage::MEMORY | cv::FileStorage::FORMAT_YAML);
   writeDefaults(out);
-  const cv::FileStorage written(out.releaseAndGetString(),
-                                cv::FileStorage::READ | cv::FileStorage::MEMORY);
-  requireKnownTree(node, path, written.root(), alsoKnown);
+  const YamlNode written(
+      std::make_shared<const YamlTree>(parseYamlTree(out.releaseAndGetString())));
+  requireKnownTree(node, written, alsoKnown);
 }
 
 }  // namespace reftrack

@@ -19,6 +19,8 @@
 #include "engine/config/ConfigValue.hpp"
 #include "engine/config/KnownKeys.hpp"
 #include "engine/config/ParamSection.hpp"
+#include "engine/config/YamlNode.hpp"
+#include "engine/core/Error.hpp"
 
 namespace reftrack {
 
@@ -107,21 +109,21 @@ class FieldWriter {
 
 class FieldReader {
  public:
-  FieldReader(const cv::FileNode& node, std::string section)
-      : node_(node), section_(std::move(section)) {}
+  explicit FieldReader(const YamlNode& node) : node_(node) {}
   template <class T, class Rule = Unchecked>
   void operator()(const char* key, T& value, const Rule& rule = {}) const {
     if constexpr (std::is_enum_v<T>) {
       std::string name = rule.name(value);
-      readConfigValue(node_, section_, key, name);
-      value = rule.parse(name);
+      readConfigValue(node_, key, name);
+      checked(key, [&](const std::string&) { value = rule.parse(name); });
     } else if constexpr (std::is_same_v<T, float>) {  // read as a double
       double number = value;
-      readConfigValue(node_, section_, key, number);
+      readConfigValue(node_, key, number);
       value = static_cast<float>(number);
     } else {
-      readConfigValue(node_, section_, key, value);
+      readConfigValue(node_, key, value);
     }
+    checked(key, [&](const std::string& name) { rule.check(name, value); });
   }
   template <class Section>
   void operator()(Section& section) const {
@@ -129,8 +131,19 @@ class FieldReader {
   }
 
  private:
-  cv::FileNode node_;
-  std::string section_;
+  // Runs check(its dotted name in the file) on a value the file gives; an error gets its line.
+  template <class Check>
+  void checked(const char* key, const Check& check) const {
+    const YamlNode n = node_.isMap() ? node_[key] : YamlNode();
+    if (!n.present()) return;
+    try {
+      check(n.name());
+    } catch (const Error& e) {
+      n.fail(e.what());
+    }
+  }
+
+  YamlNode node_;
 };
 
 class FieldChecker {
@@ -152,11 +165,11 @@ class FieldChecker {
 // Refuses keys the writer does not write (and is not told of in alsoKnown), then reads every
 // field present; absent ones keep their value (no check: read() runs check() after it).
 template <class Params>
-void readFields(Params& params, const cv::FileNode& node,
+void readFields(Params& params, const YamlNode& node,
                 const std::vector<std::string>& alsoKnown = {}) {
   requireKeysWrittenBy(
-      node, Params::kSection, [](cv::FileStorage& fs) { Params{}.write(fs); }, alsoKnown);
-  Params::fields(params, FieldReader(node, Params::kSection));
+      node, [](cv::FileStorage& fs) { Params{}.write(fs); }, alsoKnown);
+  Params::fields(params, FieldReader(node));
 }
 
 template <class Params>
@@ -170,7 +183,7 @@ void ParamSection<Params>::write(cv::FileStorage& fs) const {
 }
 
 template <class Params>
-void ParamSection<Params>::read(const cv::FileNode& node) {
+void ParamSection<Params>::read(const YamlNode& node) {
   readFields(static_cast<Params&>(*this), node);
   check();
 }

@@ -8,6 +8,8 @@
 // says `extern template struct ParamSection<Params>;`).
 #include <opencv2/core.hpp>
 
+#include "engine/config/YamlNode.hpp"
+
 namespace reftrack {
 
 template <class Params>
@@ -18,8 +20,8 @@ struct ParamSection {
   // The fields as key: value pairs (nested sections as maps) into the open map of fs.
   void write(cv::FileStorage& fs) const;
   // Refuses keys write() does not write (naming the nearest known one), reads every key present
-  // (absent ones keep their value), then check().
-  void read(const cv::FileNode& node);
+  // (absent ones keep their value; an error names the value's line), then check().
+  void read(const YamlNode& node);
 };
 
 }  // namespace reftrack

@@ -1,5 +1,6 @@
 #include "engine/config/TrackerParams.hpp"
 
+#include "engine/config/ConfigValue.hpp"
 #include "engine/config/ParamFields.hpp"
 #include "engine/core/Error.hpp"
 
@@ -30,14 +31,21 @@ void TrackerParams::fields(Self& p, const Field& field) {
 
 template struct ParamSection<TrackerParams>;
 
-void TrackerParams::read(const cv::FileNode& root) {
-  if (!root.isMap()) throw Error("parameters must be a map of sections");
+void TrackerParams::read(const YamlNode& root) {
+  if (root.isNull()) return;  // an empty file: the defaults
+  if (!root.isMap()) root.fail("parameters must be a map of sections");
   readFields(*this, root, kOtherSections);
 }
 
 TrackerParams TrackerParams::load(const std::filesystem::path& file) {
   TrackerParams p;
-  readParameterFile(file, [&](const cv::FileNode& root) { p.read(root); });
+  readParameterFile(file, [&](const YamlNode& root) { p.read(root); });
+  return p;
+}
+
+TrackerParams TrackerParams::parse(const std::string& text, const std::string& what) {
+  TrackerParams p;
+  readParameterText(text, what, [&](const YamlNode& root) { p.read(root); });
   return p;
 }
 

@@ -42,10 +42,12 @@ struct TrackerParams : ParamSection<TrackerParams> {
 
   template <class Self, class Field>  // its keys, in order: ParamFields.hpp
   static void fields(Self& self, const Field& field);
-  void read(const cv::FileNode& root);  // root: the top-level map
+  void read(const YamlNode& root);  // root: the top-level map
 
-  // Throws reftrack::Error naming the file and the key at fault.
+  // Throws reftrack::Error naming the file, the line and the key at fault.
   static TrackerParams load(const std::filesystem::path& file);
+  // The same from YAML text (JSON is YAML too); `what` names it in messages.
+  static TrackerParams parse(const std::string& text, const std::string& what);
   void save(const std::filesystem::path& file) const;  // atomic (temp file + rename)
 };
 extern template struct ParamSection<TrackerParams>;  // defined in TrackerParams.cpp

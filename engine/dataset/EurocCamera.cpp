@@ -4,7 +4,6 @@
 #include <cmath>
 #include <fstream>
 #include <opencv2/core.hpp>
-#include <sstream>
 
 #include "engine/config/ConfigFile.hpp"
 #include "engine/core/DataLines.hpp"
@@ -26,29 +25,23 @@ std::string trim(const std::string& s) {
   return s.substr(b, s.find_last_not_of(" \t\r") - b + 1);
 }
 
-// The numbers of a sequence node `key` of sensor.yaml; throws naming the key unless it holds
+// The numbers of the list `node` of sensor.yaml; throws naming its key and line unless it holds
 // exactly `count` finite numbers.
-std::vector<double> readNumbers(const cv::FileNode& node, const std::string& where,
-                                const std::string& key, std::size_t count) {
-  if (node.empty() || !node.isSeq())
-    throw Error(where + ": '" + key + "' must be a list of " + std::to_string(count) + " numbers");
+std::vector<double> readNumbers(const YamlNode& node, std::size_t count) {
+  const std::string list = "a list of " + std::to_string(count) + " numbers";
+  if (!node.present()) throw Error("'" + node.name() + "' (" + list + ") is missing");
+  if (!node.isList()) node.fail("'" + node.name() + "' must be " + list);
   std::vector<double> values;
-  for (const cv::FileNode& v : node) {
-    if (!v.isReal() && !v.isInt())
-      throw Error(where + ": '" + key + "' must be a list of " + std::to_string(count) +
-                  " numbers");
-    values.push_back(static_cast<double>(v));
+  for (const YamlNode& v : node.children()) {
+    if (!v.number()) v.fail("'" + node.name() + "' must be " + list);
+    values.push_back(*v.number());
   }
   if (values.size() != count)
-    throw Error(where + ": '" + key + "' holds " + std::to_string(values.size()) +
-                " numbers, expected " + std::to_string(count));
+    node.fail("'" + node.name() + "' holds " + std::to_string(values.size()) +
+              " numbers, expected " + std::to_string(count));
   for (double v : values)
-    if (!std::isfinite(v)) throw Error(where + ": '" + key + "' holds NaN or infinity");
+    if (!std::isfinite(v)) node.fail("'" + node.name() + "' holds NaN or infinity");
   return values;
-}
-
-std::string readString(const cv::FileNode& node) {
-  return node.isString() ? static_cast<std::string>(node) : std::string();
 }
 
 std::vector<StampedImageFile> readFrameList(const fs::path& folder) {
@@ -81,6 +74,48 @@ std::vector<StampedImageFile> readFrameList(const fs::path& folder) {
   return frames;
 }
 
+// sensor.yaml's camera model, intrinsics, resolution, distortion, T_BS and rate.
+void readSensorFields(const YamlNode& root, EurocCamera& into) {
+  const YamlNode modelNode = root["camera_model"];
+  const std::string model = modelNode.text().value_or("");
+  if (!model.empty() && model != "pinhole")
+    modelNode.fail("camera_model '" + model + "' is not supported (only pinhole)");
+  const std::vector<double> k = readNumbers(root["intrinsics"], 4);
+  const YamlNode resolution = root["resolution"];
+  const std::vector<double> res = readNumbers(resolution, 2);
+  std::vector<double> distortion;
+  const YamlNode distortionNode = root["distortion_model"];
+  const std::string distortionModel = distortionNode.text().value_or("");
+  if (distortionModel == "radial-tangential" || distortionModel == "radtan") {
+    distortion = readNumbers(root["distortion_coefficients"], 4);
+  } else if (!distortionModel.empty() || root["distortion_coefficients"].present()) {
+    distortionNode.fail("distortion_model '" + distortionModel +
+                        "' is not supported (only radial-tangential [k1, k2, p1, p2])");
+  }
+  Eigen::Matrix3d K;
+  K << k[0], 0, k[2], 0, k[1], k[3], 0, 0, 1;
+  if (res[0] != std::round(res[0]) || res[1] != std::round(res[1]) || res[0] < 1 || res[1] < 1 ||
+      res[0] > 1e5 || res[1] > 1e5)
+    resolution.fail("'resolution' must be two whole numbers [width, height]");
+  into.camera =
+      PinholeCamera(K, cv::Size(static_cast<int>(res[0]), static_cast<int>(res[1])), distortion);
+  into.camera.check();
+  const YamlNode tbs = root["T_BS"];
+  if (!tbs.isMap())
+    throw Error("'T_BS' (sensor pose in the body frame: rows, cols, data) is missing");
+  const std::vector<double> d = readNumbers(tbs["data"], 16);
+  Eigen::Matrix4d T;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) T(r, c) = d[static_cast<std::size_t>(4 * r + c)];
+  const Eigen::Matrix3d R = T.topLeftCorner<3, 3>();
+  if (T.row(3) != Eigen::RowVector4d(0, 0, 0, 1) ||
+      (R.transpose() * R - Eigen::Matrix3d::Identity()).norm() > 1e-4 || R.determinant() < 0)
+    tbs.fail("'T_BS' is not a rigid transform (rotation and last row 0 0 0 1)");
+  // Re-orthonormalise the printed rotation (8-10 digits) so inverses stay exact.
+  into.sensorToBody = RigidPose(Eigen::Quaterniond(R).normalized(), T.topRightCorner<3, 1>());
+  into.rateHz = root["rate_hz"].number().value_or(0.0);
+}
+
 }  // namespace
 
 fs::path EurocCamera::findFolder(const fs::path& given) {
@@ -96,53 +131,13 @@ fs::path EurocCamera::findFolder(const fs::path& given) {
 
 void EurocCamera::readSensor(const fs::path& sensorYaml, EurocCamera& into) {
   const std::string where = "EuRoC sensor file '" + sensorYaml.string() + "'";
-  std::ifstream in(sensorYaml, std::ios::binary);
-  if (!in) throw Error(where + " cannot be opened");
-  std::stringstream text;
-  text << in.rdbuf();
-  // EuRoC's files carry no "%YAML:1.0" directive; openConfigText adds it and checks the text
-  // against the YAML subset OpenCV's parser is safe on.
-  const cv::FileStorage fs = openConfigText(text.str(), where, "is not valid YAML");
-  const cv::FileNode root = fs.root();
-  const std::string model = readString(root["camera_model"]);
-  if (!model.empty() && model != "pinhole")
-    throw Error(where + ": camera_model '" + model + "' is not supported (only pinhole)");
-  const std::vector<double> k = readNumbers(root["intrinsics"], where, "intrinsics", 4);
-  const std::vector<double> res = readNumbers(root["resolution"], where, "resolution", 2);
-  std::vector<double> distortion;
-  const std::string distortionModel = readString(root["distortion_model"]);
-  if (distortionModel == "radial-tangential" || distortionModel == "radtan") {
-    distortion = readNumbers(root["distortion_coefficients"], where, "distortion_coefficients", 4);
-  } else if (!distortionModel.empty() || !root["distortion_coefficients"].empty()) {
-    throw Error(where + ": distortion_model '" + distortionModel +
-                "' is not supported (only radial-tangential [k1, k2, p1, p2])");
-  }
-  Eigen::Matrix3d K;
-  K << k[0], 0, k[2], 0, k[1], k[3], 0, 0, 1;
-  if (res[0] != std::round(res[0]) || res[1] != std::round(res[1]))
-    throw Error(where + ": 'resolution' must be two whole numbers [width, height]");
-  into.camera =
-      PinholeCamera(K, cv::Size(static_cast<int>(res[0]), static_cast<int>(res[1])), distortion);
+  if (!fs::is_regular_file(sensorYaml)) throw Error(where + " cannot be opened");
+  const YamlNode root = readConfigFile(sensorYaml, where);
   try {
-    into.camera.check();
+    readSensorFields(root, into);
   } catch (const Error& e) {
     throw Error(where + ": " + e.what());
   }
-  const cv::FileNode tbs = root["T_BS"];
-  if (tbs.empty() || !tbs.isMap())
-    throw Error(where + ": 'T_BS' (sensor pose in the body frame: rows, cols, data) is missing");
-  const std::vector<double> d = readNumbers(tbs["data"], where, "T_BS.data", 16);
-  Eigen::Matrix4d T;
-  for (int r = 0; r < 4; ++r)
-    for (int c = 0; c < 4; ++c) T(r, c) = d[static_cast<std::size_t>(4 * r + c)];
-  const Eigen::Matrix3d R = T.topLeftCorner<3, 3>();
-  if (T.row(3) != Eigen::RowVector4d(0, 0, 0, 1) ||
-      (R.transpose() * R - Eigen::Matrix3d::Identity()).norm() > 1e-4 || R.determinant() < 0)
-    throw Error(where + ": 'T_BS' is not a rigid transform (rotation and last row 0 0 0 1)");
-  // Re-orthonormalise the printed rotation (8-10 digits) so inverses stay exact.
-  into.sensorToBody = RigidPose(Eigen::Quaterniond(R).normalized(), T.topRightCorner<3, 1>());
-  const cv::FileNode rate = root["rate_hz"];
-  into.rateHz = rate.isReal() || rate.isInt() ? static_cast<double>(rate) : 0.0;
 }
 
 EurocCamera EurocCamera::open(const fs::path& dir) {

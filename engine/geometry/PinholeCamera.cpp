@@ -8,6 +8,7 @@
 
 #include "engine/config/ConfigFile.hpp"
 #include "engine/config/KnownKeys.hpp"
+#include "engine/config/YamlMatrix.hpp"
 #include "engine/core/AtomicFile.hpp"
 #include "engine/core/Error.hpp"
 
@@ -104,46 +105,37 @@ void PinholeCamera::check() const {
 
 PinholeCamera PinholeCamera::load(const std::filesystem::path& file) {
   if (!std::filesystem::exists(file)) throw Error(where(file) + " does not exist");
-  cv::FileStorage fs = openConfigFile(file, where(file));
-  try {
-    requireKnownKeys(fs.root(), "", kCameraFileKeys);
-  } catch (const Error& e) {
-    throw Error(where(file) + ": " + e.what());
-  }
-  auto requireNode = [&](const char* key) {
-    cv::FileNode n = fs[key];
-    if (n.empty()) throw Error(where(file) + ": missing key '" + key + "'");
-    return n;
-  };
+  const YamlNode root = readConfigFile(file, where(file));
   PinholeCamera cam;
   try {
-    cv::FileNode w = requireNode("image_width"), h = requireNode("image_height");
-    if (!w.isInt() || !h.isInt())
-      throw Error(where(file) + ": image_width and image_height must be integers");
-    cam.size_ = cv::Size(static_cast<int>(w), static_cast<int>(h));
-    cv::Mat K;
-    requireNode("camera_matrix") >> K;
-    if (K.rows != 3 || K.cols != 3)
-      throw Error(where(file) + ": camera_matrix must be a 3x3 matrix");
+    requireKnownKeys(root, kCameraFileKeys);
+    const auto requireNode = [&](const char* key) {
+      const YamlNode n = root[key];
+      if (!n.present()) throw Error("missing key '" + std::string(key) + "'");
+      return n;
+    };
+    const YamlNode w = requireNode("image_width"), h = requireNode("image_height");
+    for (const YamlNode& n : {w, h})
+      if (!n.integer()) n.fail("image_width and image_height must be integers");
+    cam.size_ = cv::Size(*w.integer(), *h.integer());
+    const YamlNode kn = requireNode("camera_matrix");
+    cv::Mat K = readYamlMatrix(kn);
+    if (K.rows != 3 || K.cols != 3 || K.channels() != 1)
+      kn.fail("camera_matrix must be a 3x3 matrix");
     K.convertTo(K, CV_64F);
     for (int r = 0; r < 3; ++r)
       for (int c = 0; c < 3; ++c) cam.K_(r, c) = K.at<double>(r, c);
-    cv::FileNode dn = fs["distortion_coefficients"];
-    if (!dn.empty()) {
-      cv::Mat D;
-      dn >> D;
+    const YamlNode dn = root["distortion_coefficients"];
+    if (dn.present()) {
+      cv::Mat D = readYamlMatrix(dn);
       if (!D.empty()) {
-        if (D.rows != 1 && D.cols != 1)
-          throw Error(where(file) + ": distortion_coefficients must be a vector");
+        if ((D.rows != 1 && D.cols != 1) || D.channels() != 1)
+          dn.fail("distortion_coefficients must be a vector");
         D.convertTo(D, CV_64F);
         D = D.reshape(1, 1);
         cam.dist_.assign(D.ptr<double>(), D.ptr<double>() + D.cols);
       }
     }
-  } catch (const cv::Exception& e) {
-    throw Error(where(file) + " has a malformed entry: " + e.err);
-  }
-  try {
     cam.check();
   } catch (const Error& e) {
     throw Error(where(file) + ": " + e.what());

@@ -20,37 +20,29 @@ AnnotationSet::AnnotationSet(std::vector<Annotation> labels) : labels_(std::move
 AnnotationSet AnnotationSet::load(const std::filesystem::path& file) {
   const std::string where = "labels file '" + file.string() + "'";
   if (!std::filesystem::exists(file)) throw Error(where + " does not exist");
-  const cv::FileStorage fs = openConfigFile(file, where);
+  const YamlNode root = readConfigFile(file, where);
+  std::vector<Annotation> labels;
   try {
-    requireKnownKeys(fs.root(), "", {"labels"});
+    requireKnownKeys(root, {"labels"});
+    const YamlNode list = root["labels"];
+    if (!list.present()) throw Error("missing key 'labels'");
+    if (!list.isList()) list.fail("'labels' must be a list of {text, x, y}");
+    for (const YamlNode& n : list.children()) {
+      if (!n.isMap()) n.fail(n.name() + " must be a map {text, x, y}");
+      requireKnownKeys(n, {"text", "x", "y"});
+      Annotation a;
+      const YamlNode t = n["text"], x = n["x"], y = n["y"];
+      if (!t.text()) n.fail(n.name() + ": 'text' is missing or not text");
+      a.text = *t.text();
+      for (const YamlNode& c : {x, y})
+        if (!c.number()) n.fail(n.name() + ": '" + c.key() + "' is missing or not a number");
+      a.position = {*x.number(), *y.number()};
+      if (!std::isfinite(a.position.x) || !std::isfinite(a.position.y))
+        n.fail(n.name() + ": position must be finite (got NaN/inf)");
+      labels.push_back(std::move(a));
+    }
   } catch (const Error& e) {
     throw Error(where + ": " + e.what());
-  }
-  const cv::FileNode list = fs["labels"];
-  if (list.empty()) throw Error(where + ": missing key 'labels'");
-  if (!list.isSeq()) throw Error(where + ": 'labels' must be a list of {text, x, y}");
-  std::vector<Annotation> labels;
-  int index = 0;
-  for (const cv::FileNode& n : list) {
-    const std::string at = "labels[" + std::to_string(index++) + "]";
-    const std::string entry = where + ": " + at;
-    if (!n.isMap()) throw Error(entry + " must be a map {text, x, y}");
-    try {
-      requireKnownKeys(n, at, {"text", "x", "y"});
-    } catch (const Error& e) {
-      throw Error(where + ": " + e.what());
-    }
-    Annotation a;
-    const cv::FileNode t = n["text"], x = n["x"], y = n["y"];
-    if (t.empty() || !t.isString()) throw Error(entry + ": 'text' is missing or not text");
-    a.text = static_cast<std::string>(t);
-    for (const auto& [node, name] : {std::pair{x, "x"}, std::pair{y, "y"}})
-      if (node.empty() || !(node.isReal() || node.isInt()))
-        throw Error(entry + ": '" + name + "' is missing or not a number");
-    a.position = {static_cast<double>(x), static_cast<double>(y)};
-    if (!std::isfinite(a.position.x) || !std::isfinite(a.position.y))
-      throw Error(entry + ": position must be finite (got NaN/inf)");
-    labels.push_back(std::move(a));
   }
   return AnnotationSet(std::move(labels));
 }

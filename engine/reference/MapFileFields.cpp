@@ -4,6 +4,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "engine/config/KnownKeys.hpp"
+#include "engine/config/YamlMatrix.hpp"
 
 namespace reftrack {
 
@@ -47,36 +48,61 @@ void checkCorners(const std::vector<ReferenceCorner>& corners, const std::string
   }
 }
 
-void MapFieldReader::requireKnown(const cv::FileNode& node, const std::string& path,
+void MapFieldReader::requireKnown(const YamlNode& node,
                                   const std::vector<std::string>& known) const {
   try {
-    requireKnownKeys(node, path, known);
+    requireKnownKeys(node, known);
   } catch (const Error& e) {
     throw Error(where_ + ": " + e.what());
   }
 }
 
-cv::FileNode MapFieldReader::need(const cv::FileNode& parent, const std::string& key,
-                                  const std::string& name) const {
-  cv::FileNode n = parent[key];
-  if (n.empty()) throw Error(where_ + ": missing field '" + name + "' (truncated file?)");
+YamlNode MapFieldReader::need(const YamlNode& parent, const std::string& key,
+                              const std::string& name) const {
+  const YamlNode n = parent[key];
+  if (!n.present()) throw Error(where_ + ": missing field '" + name + "' (truncated file?)");
   return n;
 }
 
-cv::Mat MapFieldReader::readMat(const cv::FileNode& parent, const std::string& key,
+cv::Mat MapFieldReader::readMat(const YamlNode& parent, const std::string& key,
                                 const std::string& name, int rows, int cols) const {
+  const YamlNode n = need(parent, key, name);
   cv::Mat m;
-  need(parent, key, name) >> m;
-  if ((rows >= 0 && m.rows != rows) || (cols >= 0 && !m.empty() && m.cols != cols))
+  try {
+    m = readYamlMatrix(n);
+  } catch (const Error& e) {
+    throw Error(where_ + ": " + e.what());
+  }
+  if ((rows >= 0 && m.rows != rows) || (cols >= 0 && !m.empty() && m.cols != cols) ||
+      m.channels() != 1)
     throw Error(where_ + ": field '" + name + "' has the wrong shape (" + std::to_string(m.rows) +
                 "x" + std::to_string(m.cols) + ")");
   return m;
 }
 
-PinholeCamera MapFieldReader::readCamera(const cv::FileNode& root) const {
+int MapFieldReader::readInt(const YamlNode& parent, const std::string& key,
+                            const std::string& name) const {
+  const YamlNode n = need(parent, key, name);
+  if (!n.integer())
+    throw Error(where_ + ": line " + std::to_string(n.line()) + ": field '" + name +
+                "' must be an integer");
+  return *n.integer();
+}
+
+std::string MapFieldReader::readText(const YamlNode& parent, const std::string& key,
+                                     const std::string& name) const {
+  const YamlNode n = need(parent, key, name);
+  if (!n.text())
+    throw Error(where_ + ": line " + std::to_string(n.line()) + ": field '" + name +
+                "' must be text");
+  return *n.text();
+}
+
+PinholeCamera MapFieldReader::readCamera(const YamlNode& root) const {
   cv::Mat K = readMat(root, "camera_matrix", "camera_matrix", 3, 3), D;
   K.convertTo(K, CV_64F);
-  root["distortion_coefficients"] >> D;
+  if (root["distortion_coefficients"].present())
+    D = readMat(root, "distortion_coefficients", "distortion_coefficients", -1, -1);
   Eigen::Matrix3d Ke;
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c) Ke(r, c) = K.at<double>(r, c);
@@ -87,12 +113,12 @@ PinholeCamera MapFieldReader::readCamera(const cv::FileNode& root) const {
     distortion.assign(D.ptr<double>(), D.ptr<double>() + D.cols);
   }
   return PinholeCamera(Ke,
-                       cv::Size(static_cast<int>(need(root, "image_width", "image_width")),
-                                static_cast<int>(need(root, "image_height", "image_height"))),
+                       cv::Size(readInt(root, "image_width", "image_width"),
+                                readInt(root, "image_height", "image_height")),
                        distortion);
 }
 
-RigidPose MapFieldReader::readPose(const cv::FileNode& parent, const std::string& key,
+RigidPose MapFieldReader::readPose(const YamlNode& parent, const std::string& key,
                                    const std::string& name) const {
   cv::Mat T = readMat(parent, key, name, 4, 4);
   T.convertTo(T, CV_64F);
@@ -107,7 +133,7 @@ RigidPose MapFieldReader::readPose(const cv::FileNode& parent, const std::string
   return RigidPose::fromMatrix4(M);
 }
 
-std::vector<ReferenceCorner> MapFieldReader::readCorners(const cv::FileNode& parent,
+std::vector<ReferenceCorner> MapFieldReader::readCorners(const YamlNode& parent,
                                                          const std::string& key,
                                                          const std::string& name) const {
   cv::Mat m = readMat(parent, key, name, -1, 3);

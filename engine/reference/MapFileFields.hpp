@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/config/YamlNode.hpp"
 #include "engine/core/Error.hpp"
 #include "engine/geometry/PinholeCamera.hpp"
 #include "engine/geometry/RigidPose.hpp"
@@ -36,20 +37,21 @@ class MapFieldReader {
 
   const std::string& where() const { return where_; }
   // requireKnownKeys, its message prefixed with where().
-  void requireKnown(const cv::FileNode& node, const std::string& path,
-                    const std::vector<std::string>& known) const;
+  void requireKnown(const YamlNode& node, const std::vector<std::string>& known) const;
   // parent[key]; throws "missing field 'name' (truncated file?)" when absent.
-  cv::FileNode need(const cv::FileNode& parent, const std::string& key,
-                    const std::string& name) const;
-  // A matrix with `rows` x `cols` (-1: any; an empty matrix passes any cols).
-  cv::Mat readMat(const cv::FileNode& parent, const std::string& key, const std::string& name,
-                  int rows, int cols) const;
+  YamlNode need(const YamlNode& parent, const std::string& key, const std::string& name) const;
+  // A matrix (YamlMatrix.hpp) with `rows` x `cols` (-1: any; an empty matrix passes any cols).
+  cv::Mat readMat(const YamlNode& parent, const std::string& key, const std::string& name, int rows,
+                  int cols) const;
+  // parent[key] as an integer or as text; throws naming the field otherwise.
+  int readInt(const YamlNode& parent, const std::string& key, const std::string& name) const;
+  std::string readText(const YamlNode& parent, const std::string& key,
+                       const std::string& name) const;
   // The camera writeMapCamera() wrote at the root (not checked: the map's check() does that).
-  PinholeCamera readCamera(const cv::FileNode& root) const;
+  PinholeCamera readCamera(const YamlNode& root) const;
   // A finite rigid 4x4 transform.
-  RigidPose readPose(const cv::FileNode& parent, const std::string& key,
-                     const std::string& name) const;
-  std::vector<ReferenceCorner> readCorners(const cv::FileNode& parent, const std::string& key,
+  RigidPose readPose(const YamlNode& parent, const std::string& key, const std::string& name) const;
+  std::vector<ReferenceCorner> readCorners(const YamlNode& parent, const std::string& key,
                                            const std::string& name) const;
   // The image `fileName` beside map.yml; `name` is the field that named it.
   cv::Mat readImage(const std::string& fileName, const std::string& name) const;
@@ -59,16 +61,12 @@ class MapFieldReader {
   std::filesystem::path folder_;
 };
 
-// Runs readFields(map) on a default Map, then map.check(); an OpenCV parse error or a failed
-// check becomes a reftrack::Error naming `where`.
+// Runs readFields(map) on a default Map, then map.check(); a failed check becomes a
+// reftrack::Error naming `where`.
 template <class Map, class ReadFields>
 Map readCheckedMap(const std::string& where, ReadFields&& readFields) {
   Map map;
-  try {
-    readFields(map);
-  } catch (const cv::Exception& e) {
-    throw Error(where + " has a malformed field: " + e.err);
-  }
+  readFields(map);
   try {
     map.check();
   } catch (const Error& e) {

@@ -154,23 +154,12 @@ void MultiReferenceMap::save(const std::filesystem::path& folder) const {
 MultiReferenceMap MultiReferenceMap::load(const std::filesystem::path& folder) {
   const std::filesystem::path file = folder / kFileName;
   const std::string where = "reference map '" + file.string() + "'";
-  cv::FileStorage fs = openReferenceMapFile(file);
-  int version = 0;
-  try {
-    const cv::FileNode format = fs["format"], versionNode = fs["version"];
-    if (format.empty() || versionNode.empty())
-      throw Error(where + ": missing field '" + (format.empty() ? "format" : "version") +
-                  "' (truncated file?)");
-    if (static_cast<std::string>(format) != kFormatName)
-      throw Error(where + " is not a reftrack reference map");
-    version = static_cast<int>(versionNode);
-  } catch (const cv::Exception& e) {
-    throw Error(where + " has a malformed field: " + e.err);
-  }
-  if (version == ReferenceMap::kFormatVersion) {
-    fs.release();
-    return fromPair(ReferenceMap::load(folder));
-  }
+  const YamlNode root = openReferenceMapFile(file);
+  const MapFieldReader read(where, folder);
+  if (read.readText(root, "format", "format") != kFormatName)
+    throw Error(where + " is not a reftrack reference map");
+  const int version = read.readInt(root, "version", "version");
+  if (version == ReferenceMap::kFormatVersion) return fromPair(ReferenceMap::load(folder));
   // Version 2 is version 3 without observation_peaks.
   constexpr int kVersionWithoutPeaks = 2;
   if (version != kFormatVersion && version != kVersionWithoutPeaks)
@@ -181,7 +170,6 @@ MultiReferenceMap MultiReferenceMap::load(const std::filesystem::path& folder) {
                 (version > kFormatVersion ? " (written by a newer reftrack?)" : ""));
   const bool hasPeaks = version >= kFormatVersion;
 
-  const MapFieldReader read(where, folder);
   return readCheckedMap<MultiReferenceMap>(where, [&](MultiReferenceMap& map) {
     std::vector<std::string> rootKeys = {"format",
                                          "version",
@@ -197,27 +185,26 @@ MultiReferenceMap MultiReferenceMap::load(const std::filesystem::path& folder) {
                                          "observations",
                                          "preparation_params"};
     if (hasPeaks) rootKeys.push_back("observation_peaks");
-    read.requireKnown(fs.root(), "", rootKeys);
-    const cv::FileNode root = fs.root();
+    read.requireKnown(root, rootKeys);
     map.camera = read.readCamera(root);
-    map.poseSource = static_cast<std::string>(fs["pose_source"]);
-    map.keypointKind = static_cast<std::string>(fs["keypoint_kind"]);
-    map.preparationParams = static_cast<std::string>(fs["preparation_params"]);
+    map.poseSource = root["pose_source"].text().value_or("");
+    map.keypointKind = root["keypoint_kind"].text().value_or("");
+    map.preparationParams = root["preparation_params"].text().value_or("");
 
-    const cv::FileNode viewsNode = read.need(root, "views", "views");
-    if (!viewsNode.isSeq()) throw Error(where + ": field 'views' is not a list");
+    const YamlNode viewsNode = read.need(root, "views", "views");
+    if (!viewsNode.isList()) throw Error(where + ": field 'views' is not a list");
     for (std::size_t v = 0; v < viewsNode.size(); ++v) {
-      const cv::FileNode node = viewsNode[static_cast<int>(v)];
+      const YamlNode node = viewsNode.item(v);
       const std::string at = viewName(v);
       if (!node.isMap()) throw Error(where + ": field '" + at + "' is not a map");
-      read.requireKnown(node, at, {"name", "T", "anchored", "corners", "keypoints"});
+      read.requireKnown(node, {"name", "T", "anchored", "corners", "keypoints"});
       ReferenceView view;
-      view.name = static_cast<std::string>(read.need(node, "name", at + ".name"));
+      view.name = read.readText(node, "name", at + ".name");
       view.T = read.readPose(node, "T", at + ".T");
-      view.anchored = static_cast<int>(read.need(node, "anchored", at + ".anchored")) != 0;
+      view.anchored = read.readInt(node, "anchored", at + ".anchored") != 0;
       view.corners = read.readCorners(node, "corners", at + ".corners");
       try {
-        view.keypoints = ReferenceKeypoints::read(node["keypoints"], at + ".keypoints");
+        view.keypoints = ReferenceKeypoints::read(node["keypoints"]);
       } catch (const Error& e) {
         throw Error(where + ": " + e.what());
       }
@@ -228,7 +215,7 @@ MultiReferenceMap MultiReferenceMap::load(const std::filesystem::path& folder) {
       map.views.push_back(std::move(view));
     }
 
-    const int pointCount = static_cast<int>(read.need(root, "point_count", "point_count"));
+    const int pointCount = read.readInt(root, "point_count", "point_count");
     if (pointCount < 0) throw Error(where + ": field 'point_count' is negative");
     cv::Mat world = read.readMat(root, "points", "points", pointCount, 3);
     cv::Mat obs = read.readMat(root, "observations", "observations", -1, 3);

@@ -17,11 +17,11 @@ constexpr const char* kImageB = "reference_b.png";
 
 }  // namespace
 
-cv::FileStorage openReferenceMapFile(const std::filesystem::path& file) {
+YamlNode openReferenceMapFile(const std::filesystem::path& file) {
   const std::string where = "reference map '" + file.string() + "'";
   if (!std::filesystem::exists(file))
     throw Error(where + " does not exist (run `reftrack prepare` first)");
-  return openConfigFile(file, where, "is corrupt or truncated");
+  return readConfigFile(file, where, "is corrupt or truncated");
 }
 
 void ReferenceMap::check() const {
@@ -87,26 +87,24 @@ void ReferenceMap::save(const std::filesystem::path& folder) const {
 ReferenceMap ReferenceMap::load(const std::filesystem::path& folder) {
   const std::filesystem::path file = folder / kFileName;
   const std::string where = "reference map '" + file.string() + "'";
-  cv::FileStorage fs = openReferenceMapFile(file);
+  const YamlNode root = openReferenceMapFile(file);
   const MapFieldReader read(where, folder);
   return readCheckedMap<ReferenceMap>(where, [&](ReferenceMap& map) {
-    const cv::FileNode root = fs.root();
     read.requireKnown(
-        root, "",
-        {"format", "version", "image_width", "image_height", "camera_matrix",
-         "distortion_coefficients", "T_A", "T_B", "reference_a", "reference_b", "pose_source",
-         "corners_a", "corners_b", "matches", "points_a", "preparation_params"});
-    if (static_cast<std::string>(read.need(root, "format", "format")) != "reftrack-reference-map")
+        root, {"format", "version", "image_width", "image_height", "camera_matrix",
+               "distortion_coefficients", "T_A", "T_B", "reference_a", "reference_b", "pose_source",
+               "corners_a", "corners_b", "matches", "points_a", "preparation_params"});
+    if (read.readText(root, "format", "format") != "reftrack-reference-map")
       throw Error(where + " is not a reftrack reference map");
-    const int version = static_cast<int>(read.need(root, "version", "version"));
+    const int version = read.readInt(root, "version", "version");
     if (version != kFormatVersion)
       throw Error(where + " has format version " + std::to_string(version) +
                   "; this reftrack reads version " + std::to_string(kFormatVersion));
     map.camera = read.readCamera(root);
     map.T_A = read.readPose(root, "T_A", "T_A");
     map.T_B = read.readPose(root, "T_B", "T_B");
-    map.poseSource = static_cast<std::string>(fs["pose_source"]);
-    map.preparationParams = static_cast<std::string>(fs["preparation_params"]);
+    map.poseSource = root["pose_source"].text().value_or("");
+    map.preparationParams = root["preparation_params"].text().value_or("");
     map.cornersA = read.readCorners(root, "corners_a", "corners_a");
     map.cornersB = read.readCorners(root, "corners_b", "corners_b");
     cv::Mat idx = read.readMat(root, "matches", "matches", -1, 2),
@@ -120,7 +118,7 @@ ReferenceMap ReferenceMap::load(const std::filesystem::path& folder) {
           {idx.at<int>(i, 0), idx.at<int>(i, 1),
            Eigen::Vector3d(pts.at<double>(i, 0), pts.at<double>(i, 1), pts.at<double>(i, 2))});
     const auto readImage = [&](const char* key) {
-      return read.readImage(static_cast<std::string>(read.need(root, key, key)), key);
+      return read.readImage(read.readText(root, key, key), key);
     };
     map.imageA = readImage("reference_a");
     map.imageB = readImage("reference_b");

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/config/YamlNode.hpp"
 #include "engine/geometry/PinholeCamera.hpp"
 #include "engine/geometry/RigidPose.hpp"
 
@@ -54,6 +55,6 @@ class ReferenceMap {
 
 // Opens a map.yml (either format version) for reading; throws reftrack::Error naming the file
 // when it is missing, cannot be opened or is corrupt.
-cv::FileStorage openReferenceMapFile(const std::filesystem::path& file);
+YamlNode openReferenceMapFile(const std::filesystem::path& file);
 
 }  // namespace reftrack

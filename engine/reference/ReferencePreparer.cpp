@@ -102,36 +102,32 @@ void ReferencePreparerParams::write(cv::FileStorage& fs) const {
   fs << "}";
 }
 
-void ReferencePreparerParams::read(const cv::FileNode& root,
+void ReferencePreparerParams::read(const YamlNode& root,
                                    const std::vector<std::string>& otherSections) {
-  if (!root.isMap()) throw Error("preparation parameters must be a map of sections");
+  if (root.isNull()) return;  // an empty file: the defaults
+  if (!root.isMap()) root.fail("preparation parameters must be a map of sections");
   requireKeysWrittenBy(
-      root, "", [](cv::FileStorage& fs) { ReferencePreparerParams{}.write(fs); }, otherSections);
+      root, [](cv::FileStorage& fs) { ReferencePreparerParams{}.write(fs); }, otherSections);
   corners.read(root["corners"]);
   matching.read(root["matching"]);
-  readConfigValue(root["marker"], "marker", "ambiguity_ratio", marker.ambiguityRatio);
-  readConfigValue(root["marker"], "marker", "max_reprojection_rms_px", marker.maxReprojectionRmsPx);
-  readConfigValue(root["preparation"], "preparation", "min_baseline_m", minBaselineMetres);
-  readConfigValue(root["preparation"], "preparation", "min_matches", minMatches);
-  readConfigValue(root["preparation"], "preparation", "max_pair_view_angle_deg",
-                  maxPairViewAngleDeg);
-  readConfigValue(root["preparation"], "preparation", "min_pair_matches", minPairMatches);
-  readConfigValue(root["preparation"], "preparation", "max_track_reprojection_error_px",
+  readConfigValue(root["marker"], "ambiguity_ratio", marker.ambiguityRatio);
+  readConfigValue(root["marker"], "max_reprojection_rms_px", marker.maxReprojectionRmsPx);
+  readConfigValue(root["preparation"], "min_baseline_m", minBaselineMetres);
+  readConfigValue(root["preparation"], "min_matches", minMatches);
+  readConfigValue(root["preparation"], "max_pair_view_angle_deg", maxPairViewAngleDeg);
+  readConfigValue(root["preparation"], "min_pair_matches", minPairMatches);
+  readConfigValue(root["preparation"], "max_track_reprojection_error_px",
                   maxTrackReprojectionErrorPx);
-  readConfigValue(root["preparation"], "preparation", "refine_poses", refinePoses);
-  readConfigValue(root["preparation"], "preparation", "refine_given_poses", refineGivenPoses);
-  readConfigValue(root["preparation"], "preparation", "pose_prior_origin_sd_px",
-                  poseRefinement.originSdPx);
-  readConfigValue(root["preparation"], "preparation", "pose_prior_translation_sd_m",
+  readConfigValue(root["preparation"], "refine_poses", refinePoses);
+  readConfigValue(root["preparation"], "refine_given_poses", refineGivenPoses);
+  readConfigValue(root["preparation"], "pose_prior_origin_sd_px", poseRefinement.originSdPx);
+  readConfigValue(root["preparation"], "pose_prior_translation_sd_m",
                   poseRefinement.translationSdMetres);
-  readConfigValue(root["preparation"], "preparation", "pose_prior_rotation_sd_deg",
-                  poseRefinement.rotationSdDeg);
-  readConfigValue(root["preparation"], "preparation", "pose_refinement_corner_sd_px",
-                  poseRefinement.cornerSdPx);
-  readConfigValue(root["preparation"], "preparation", "pose_refinement_iterations",
-                  poseRefinement.maxIterations);
+  readConfigValue(root["preparation"], "pose_prior_rotation_sd_deg", poseRefinement.rotationSdDeg);
+  readConfigValue(root["preparation"], "pose_refinement_corner_sd_px", poseRefinement.cornerSdPx);
+  readConfigValue(root["preparation"], "pose_refinement_iterations", poseRefinement.maxIterations);
   relocalisation.read(root["relocalisation"]);
-  check();
+  checkWithLines(root, [&] { check(); });
 }
 
 std::string ReferencePreparerParams::toYaml() const {
@@ -143,7 +139,7 @@ std::string ReferencePreparerParams::toYaml() const {
 
 ReferencePreparerParams ReferencePreparerParams::load(const std::filesystem::path& file) {
   ReferencePreparerParams p;
-  readParameterFile(file, [&](const cv::FileNode& root) { p.read(root); });
+  readParameterFile(file, [&](const YamlNode& root) { p.read(root); });
   return p;
 }
 

@@ -80,7 +80,7 @@ struct ReferencePreparerParams {
   void write(cv::FileStorage& fs) const;
   // Missing keys keep their value; then check(). An unknown key or section throws, except the
   // top-level `otherSections` the caller reads from the same file itself.
-  void read(const cv::FileNode& root, const std::vector<std::string>& otherSections = {});
+  void read(const YamlNode& root, const std::vector<std::string>& otherSections = {});
   std::string toYaml() const;  // the whole set as YAML text (ReferenceMap's record)
   // Throws reftrack::Error naming the file and the key at fault.
   static ReferencePreparerParams load(const std::filesystem::path& file);

@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "engine/config/KnownKeys.hpp"
+#include "engine/config/YamlMatrix.hpp"
 #include "engine/core/Error.hpp"
 
 namespace reftrack {
@@ -49,26 +50,20 @@ void ReferenceKeypoints::write(cv::FileStorage& fs, const std::string& name) con
   fs << "}";
 }
 
-ReferenceKeypoints ReferenceKeypoints::read(const cv::FileNode& node, const std::string& name) {
-  if (node.empty() || !node.isMap()) throw Error(name + ": missing or not a map");
-  requireKnownKeys(node, name, {"count", "keypoints", "descriptors", "points"});
+ReferenceKeypoints ReferenceKeypoints::read(const YamlNode& node) {
+  const std::string& name = node.name();
+  if (!node.isMap()) node.fail(name + ": missing or not a map");
+  requireKnownKeys(node, {"count", "keypoints", "descriptors", "points"});
   ReferenceKeypoints r;
-  int count = -1;
-  cv::Mat kp, pts;
-  try {
-    node["count"] >> count;
-    node["keypoints"] >> kp;
-    node["descriptors"] >> r.descriptors;
-    node["points"] >> pts;
-  } catch (const cv::Exception& e) {
-    throw Error(name + ": unreadable (" + std::string(e.what()) + ")");
-  }
-  if (count < 0) throw Error(name + ".count: missing or negative");
+  const int count = node["count"].integer().value_or(-1);
+  if (count < 0) node.fail(name + ".count: missing or negative");
   if (count == 0) return r;
+  const cv::Mat kp = readYamlMatrix(node["keypoints"]), pts = readYamlMatrix(node["points"]);
+  r.descriptors = readYamlMatrix(node["descriptors"]);
   if (kp.rows != count || kp.cols != 6 || kp.type() != CV_32F)
-    throw Error(name + ".keypoints: expected " + std::to_string(count) + "x6 floats");
+    node["keypoints"].fail(name + ".keypoints: expected " + std::to_string(count) + "x6 floats");
   if (pts.rows != count || pts.cols != 3 || pts.type() != CV_64F)
-    throw Error(name + ".points: expected " + std::to_string(count) + "x3 doubles");
+    node["points"].fail(name + ".points: expected " + std::to_string(count) + "x3 doubles");
   for (int i = 0; i < count; ++i) {
     cv::KeyPoint k;
     k.pt = {kp.at<float>(i, 0), kp.at<float>(i, 1)};

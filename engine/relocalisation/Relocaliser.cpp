@@ -11,8 +11,8 @@
 #include "engine/config/ResolutionScale.hpp"
 #include "engine/core/Error.hpp"
 #include "engine/core/ThreadCpuClock.hpp"
-#include "engine/relocalisation/KeypointFeatures.hpp"
 #include "engine/features/CornerGrid.hpp"
+#include "engine/relocalisation/KeypointFeatures.hpp"
 
 namespace reftrack {
 

@@ -17,7 +17,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     MapExtensionParams extension;
     BundleAdjustmentParams bundleAdjustment;
     ReferencePreparerParams preparation;
-    readParameterFile(file, [&](const cv::FileNode& root) {
+    readParameterFile(file, [&](const YamlNode& root) {
       extension.read(root["extension"]);
       bundleAdjustment.read(root["bundle_adjustment"]);
       preparation.read(root, {"extension", "bundle_adjustment"});

@@ -2,6 +2,8 @@
 #   BUILD_DIR     the built reftrack tree       CONSUMER_DIR  tests/install/consumer
 #   WORK_DIR      scratch folder (recreated)    LAUNCHER      compiler launcher (ccache) or empty
 #   README        README.md, which must quote the consumer's main.cpp verbatim
+#   PYTHON        python3 of the Python module (empty: built without it)
+#   PYTHON_DIR    where the install puts the module, relative to the prefix
 # It installs the build into WORK_DIR/prefix, configures and builds the consumer as a separate
 # project against that prefix only (find_package(reftrack)), makes a simulated clip and its map
 # with the installed `reftrack`, and runs the consumer on the clip: it must exit 0 and print a
@@ -43,6 +45,31 @@ endforeach()
 file(GLOB_RECURSE configs ${prefix}/*/reftrackConfig.cmake)
 if(NOT configs)
   message(FATAL_ERROR "install: no reftrackConfig.cmake under ${prefix}")
+endif()
+
+# The Python module, imported from the prefix alone (its Python path; not the build tree's).
+if(PYTHON)
+  foreach(file ${PYTHON_DIR}/reftrack.pyi)
+    if(NOT EXISTS ${prefix}/${file})
+      message(FATAL_ERROR "install: ${prefix}/${file} missing")
+    endif()
+  endforeach()
+  step("import reftrack" ${CMAKE_COMMAND} -E env PYTHONPATH=${prefix}/${PYTHON_DIR}
+       ${PYTHON} -c "import reftrack\nprint(reftrack.__file__, reftrack.__version__)")
+  string(FIND "${step_output}" "${prefix}/${PYTHON_DIR}/reftrack." from_prefix)
+  if(from_prefix EQUAL -1)
+    message(FATAL_ERROR "import reftrack: not the installed module: ${step_output}")
+  endif()
+  # Installed under CMake's default prefix (/usr/local) or /usr, python3 finds it unaided.
+  step("python3's path" ${CMAKE_COMMAND} -E env --unset=PYTHONPATH ${PYTHON} -c
+       "import sys\nprint(*sys.path, sep='\\n')")
+  string(REPLACE "\n" ";" python_path "${step_output}")
+  foreach(system_prefix /usr/local /usr)
+    if(NOT "${system_prefix}/${PYTHON_DIR}" IN_LIST python_path)
+      message(FATAL_ERROR "${system_prefix}/${PYTHON_DIR} is not on ${PYTHON}'s path: "
+                          "${step_output}")
+    endif()
+  endforeach()
 endif()
 
 # Only the temporary prefix: no package registry, so the build tree cannot stand in for it.

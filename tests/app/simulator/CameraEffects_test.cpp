@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "ErrorMessage.hpp"
+#include "engine/config/ConfigFile.hpp"
 #include "engine/core/Error.hpp"
 
 using namespace reftrack;
@@ -68,19 +69,16 @@ TEST(CameraEffects, RoundTripsThroughFileStorage) {
       << "{";
   e.write(out);
   out << "}";
-  const std::string text = out.releaseAndGetString();
-  cv::FileStorage in(text, cv::FileStorage::READ | cv::FileStorage::MEMORY);
   CameraEffects back;
-  back.read(in["effects"]);
+  back.read(readConfigText(out.releaseAndGetString(), "effects file")["effects"]);
   EXPECT_EQ(back.key(), e.key());
   EXPECT_EQ(back.jpegQuality, 60);
   EXPECT_EQ(back.codec, "h264");
 }
 
 TEST(CameraEffects, ReadRefusesAnUnknownKeyNamingTheNearestKnownOne) {
-  cv::FileStorage in("%YAML:1.0\neffects: { vignette: 0.2 }\n",
-                     cv::FileStorage::READ | cv::FileStorage::MEMORY);
+  const YamlNode in = readConfigText("%YAML:1.0\neffects: { vignette: 0.2 }\n", "effects file");
   CameraEffects e;
   EXPECT_EQ(test::errorMessage([&] { e.read(in["effects"]); }),
-            "effects.vignette: unknown key — did you mean effects.vignetting?");
+            "line 2: effects.vignette: unknown key — did you mean effects.vignetting?");
 }

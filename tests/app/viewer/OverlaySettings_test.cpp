@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include "ErrorMessage.hpp"
+#include "engine/config/ConfigFile.hpp"
 #include "engine/core/Error.hpp"
 
 using namespace reftrack;
@@ -32,10 +34,8 @@ TEST(OverlaySettings, RoundTripsThroughYaml) {
       << "{";
   s.write(out);
   out << "}";
-  const std::string text = out.releaseAndGetString();
-  cv::FileStorage in(text, cv::FileStorage::READ | cv::FileStorage::MEMORY);
   OverlaySettings r;
-  r.read(in["overlay"]);
+  r.read(readConfigText(out.releaseAndGetString(), "settings")["overlay"]);
   EXPECT_DOUBLE_EQ(r.size, 0.07);
   EXPECT_TRUE(r.offset.isApprox(s.offset));
   EXPECT_EQ(r.modelPath, s.modelPath);
@@ -63,8 +63,7 @@ TEST(OverlaySettings, BadValuesAreNamed) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("overlay.offset_y"), std::string::npos) << e.what();
   }
-  cv::FileStorage in("%YAML:1.0\n---\noverlay: {size: -1}\n", cv::FileStorage::READ |
-                                                                  cv::FileStorage::MEMORY |
-                                                                  cv::FileStorage::FORMAT_YAML);
-  EXPECT_THROW(OverlaySettings{}.read(in["overlay"]), Error);
+  const YamlNode in = readConfigText("%YAML:1.0\n---\noverlay: {size: -1}\n", "settings");
+  EXPECT_EQ(test::errorMessage([&] { OverlaySettings{}.read(in["overlay"]); }),
+            "line 3: parameter 'overlay.size' must lie in [0.000001, 1000.000000], got -1.000000");
 }

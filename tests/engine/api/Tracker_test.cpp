@@ -213,6 +213,12 @@ TEST(Tracker, HomographyModeFromAReferenceImageAndCamera) {
   const Tracker::Result lost = tracker.track(test::texturedImage(size, 98));
   EXPECT_EQ(lost.state, Tracker::State::Lost);
   EXPECT_FALSE(lost.reason.empty());
+  // Parameters given as a struct (what the Python module passes) instead of a file.
+  TrackerParams params;
+  params.ransac.maxIterations = 90;
+  Tracker withParams = Tracker::openReference(dir / "reference.png", dir / "camera.yml", params);
+  EXPECT_EQ(withParams.track(test::warpedBy(reference, homographyOf(K, panTilt(1)))).state,
+            Tracker::State::Tracking);
 }
 
 TEST(Tracker, BadInputsAreClearErrors) {
@@ -240,6 +246,12 @@ TEST(Tracker, BadInputsAreClearErrors) {
   EXPECT_NE(message([&] {
               Tracker::openReference(dir / "reference.png", {}, options);
             }).find("absent.yml"),
+            std::string::npos);
+  TrackerParams bad;
+  bad.ransac.maxIterations = 0;
+  EXPECT_NE(message([&] {
+              Tracker::openReference(dir / "reference.png", {}, bad);
+            }).find("ransac.max_iterations"),
             std::string::npos);
 }
 

@@ -52,8 +52,8 @@ TEST(BundleAdjustmentParams, EveryBadFieldIsNamed) {
 }
 
 TEST(BundleAdjustmentParams, WrongTypeInYamlIsNamed) {
-  cv::FileStorage fs = parseYaml("s: { loss_scale_px: abc }\n");
+  const YamlNode fs = parseYaml("# read by `extend`\nbundle_adjustment: { loss_scale_px: abc }\n");
   BundleAdjustmentParams p;
-  EXPECT_NE(errorMessage([&] { p.read(fs["s"]); }).find("bundle_adjustment.loss_scale_px"),
-            std::string::npos);
+  EXPECT_EQ(errorMessage([&] { p.read(fs["bundle_adjustment"]); }),
+            "line 2: parameter 'bundle_adjustment.loss_scale_px' must be a number");
 }

@@ -53,9 +53,11 @@ TEST(HomographyTrackerParams, KeypointLayerNames) {
     EXPECT_EQ(parseKeypointLayer(keypointLayerName(k)), k);
   EXPECT_NE(errorMessage([] { parseKeypointLayer("surf"); }).find("homography.keypoints"),
             std::string::npos);
-  auto fs = parseYaml("h: { keypoints: brisk }\n");
+  auto fs = parseYaml("homography:\n  keypoints: brisk\n");
   HomographyTrackerParams q;
-  EXPECT_NE(errorMessage([&] { q.read(fs["h"]); }).find("'brisk'"), std::string::npos);
+  const std::string message = errorMessage([&] { q.read(fs["homography"]); });
+  EXPECT_EQ(message.rfind("line 2: ", 0), 0u) << message;
+  EXPECT_NE(message.find("'brisk'"), std::string::npos) << message;
 }
 
 TEST(HomographyTrackerParams, BadFieldIsNamed) {
@@ -101,8 +103,8 @@ TEST(HomographyTrackerParams, BadFieldIsNamed) {
   p.keypointInlierThresholdPx = -1;
   EXPECT_NE(errorMessage([&] { p.check(); }).find("homography.keypoint_inlier_threshold_px"),
             std::string::npos);
-  auto fs = parseYaml("h: { frame_to_frame_prediction: 3 }\n");
+  auto fs = parseYaml("homography: { frame_to_frame_prediction: 3 }\n");
   HomographyTrackerParams q;
-  EXPECT_NE(errorMessage([&] { q.read(fs["h"]); }).find("homography.frame_to_frame_prediction"),
-            std::string::npos);
+  EXPECT_EQ(errorMessage([&] { q.read(fs["homography"]); }),
+            "line 1: parameter 'homography.frame_to_frame_prediction' must be true or false");
 }

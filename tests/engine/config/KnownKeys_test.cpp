@@ -29,37 +29,60 @@ TEST(KnownKeys, NearestKeyPrefersTheSmallestDistanceThenTheFirst) {
   EXPECT_EQ(nearestKey("anything", {}), "");
 }
 
-TEST(KnownKeys, UnknownKeyNamesItAndTheNearestKnownKey) {
-  const cv::FileStorage fs = parseYaml("ransac:\n  iterations: 200\n");
+TEST(KnownKeys, UnknownKeyNamesItsLineItAndTheNearestKnownKey) {
+  const YamlNode root = parseYaml("# ransac\nransac:\n  iterations: 200\n");
   EXPECT_EQ(errorMessage([&] {
-              requireKnownKeys(fs["ransac"], "ransac", {"max_iterations", "seed"});
+              requireKnownKeys(root["ransac"], {"max_iterations", "seed"});
             }),
-            "ransac.iterations: unknown key — did you mean ransac.max_iterations?");
-  EXPECT_EQ(errorMessage([&] { requireKnownKeys(fs["ransac"], "ransac", {}); }),
-            "ransac.iterations: unknown key — this map takes no keys");
-  EXPECT_EQ(errorMessage([&] { requireKnownKeys(fs["ransac"], "ransac", {"iterations"}); }),
-            "(no error)");
+            "line 3: ransac.iterations: unknown key — did you mean ransac.max_iterations?");
+  EXPECT_EQ(errorMessage([&] { requireKnownKeys(root["ransac"], {}); }),
+            "line 3: ransac.iterations: unknown key — this map takes no keys");
+  EXPECT_EQ(errorMessage([&] { requireKnownKeys(root["ransac"], {"iterations"}); }), "(no error)");
+}
+
+// The example: a flow map on line 3 with a misspelt key.
+TEST(KnownKeys, AMisspeltKeyInAFlowMapNamesItsLine) {
+  const YamlNode root =
+      parseYaml("mode: 6dof\n# tuned for the desk\nransac: {max_iteratons: 80}\n");
+  EXPECT_EQ(errorMessage([&] {
+              requireKeysWrittenBy(root, [](cv::FileStorage& out) {
+                out << "mode"
+                    << "6dof"
+                    << "ransac"
+                    << "{";
+                RansacParams{}.write(out);
+                out << "}";
+              });
+            }),
+            "line 3: ransac.max_iteratons: unknown key — did you mean ransac.max_iterations?");
 }
 
 TEST(KnownKeys, AMapIsASectionButAnOpenCvMatrixIsAKey) {
-  const cv::FileStorage fs = parseYaml(
+  const YamlNode root = parseYaml(
       "ransca:\n  seed: 1\ncamera_matrx: !!opencv-matrix\n  rows: 1\n  cols: 1\n  dt: d\n"
       "  data: [1.]\n");
   EXPECT_EQ(errorMessage([&] {
-              requireKnownKeys(fs.root(), "", {"ransac", "camera_matrx"});
+              requireKnownKeys(root, {"ransac", "camera_matrx"});
             }),
-            "ransca: unknown section — did you mean ransac?");
+            "line 1: ransca: unknown section — did you mean ransac?");
   EXPECT_EQ(errorMessage([&] {
-              requireKnownKeys(fs.root(), "", {"ransca", "camera_matrix"});
+              requireKnownKeys(root, {"ransca", "camera_matrix"});
             }),
-            "camera_matrx: unknown key — did you mean camera_matrix?");
+            "line 3: camera_matrx: unknown key — did you mean camera_matrix?");
+}
+
+TEST(KnownKeys, AYaml11MergeKeyIsExplained) {
+  const YamlNode root = parseYaml("base: &b {seed: 1}\nransac:\n  <<: *b\n");
+  EXPECT_EQ(
+      errorMessage([&] { requireKnownKeys(root["ransac"], {"seed"}); }),
+      "line 3: ransac.<<: unknown section — '<<' merges maps in YAML 1.1 only; write the keys out "
+      "(an alias may stand for a whole section)");
 }
 
 TEST(KnownKeys, AbsentOrNonMapNodesAreLeftToTheReader) {
-  const cv::FileStorage fs = parseYaml("list: [1, 2]\nvalue: 3\n");
-  EXPECT_EQ(errorMessage([&] { requireKnownKeys(fs["missing"], "missing", {}); }), "(no error)");
-  EXPECT_EQ(errorMessage([&] { requireKnownKeys(fs["list"], "list", {}); }), "(no error)");
-  EXPECT_EQ(errorMessage([&] { requireKnownKeys(fs["value"], "value", {}); }), "(no error)");
+  const YamlNode root = parseYaml("list: [1, 2]\nvalue: 3\nempty:\n");
+  for (const char* key : {"missing", "list", "value", "empty"})
+    EXPECT_EQ(errorMessage([&] { requireKnownKeys(root[key], {}); }), "(no error)") << key;
 }
 
 TEST(KnownKeys, KeysWrittenByTheWriterAreKnownIntoNestedSections) {
@@ -71,16 +94,15 @@ TEST(KnownKeys, KeysWrittenByTheWriterAreKnownIntoNestedSections) {
     RansacParams{}.write(out);
     out << "}";
   };
-  const cv::FileStorage good = parseYaml("mode: y\nransac:\n  max_iterations: 5\n  seed: 2\n");
-  EXPECT_EQ(errorMessage([&] { requireKeysWrittenBy(good.root(), "", writer); }), "(no error)");
-  const cv::FileStorage key = parseYaml("ransac:\n  iterations: 5\n");
-  EXPECT_EQ(errorMessage([&] { requireKeysWrittenBy(key.root(), "", writer); }),
-            "ransac.iterations: unknown key — did you mean ransac.max_iterations?");
-  const cv::FileStorage section = parseYaml("ransak:\n  max_iterations: 5\n");
-  EXPECT_EQ(errorMessage([&] { requireKeysWrittenBy(section.root(), "", writer); }),
-            "ransak: unknown section — did you mean ransac?");
+  const YamlNode good = parseYaml("mode: y\nransac:\n  max_iterations: 5\n  seed: 2\n");
+  EXPECT_EQ(errorMessage([&] { requireKeysWrittenBy(good, writer); }), "(no error)");
+  const YamlNode key = parseYaml("ransac:\n  iterations: 5\n");
+  EXPECT_EQ(errorMessage([&] { requireKeysWrittenBy(key, writer); }),
+            "line 2: ransac.iterations: unknown key — did you mean ransac.max_iterations?");
+  const YamlNode section = parseYaml("ransak:\n  max_iterations: 5\n");
+  EXPECT_EQ(errorMessage([&] { requireKeysWrittenBy(section, writer); }),
+            "line 1: ransak: unknown section — did you mean ransac?");
   // Sections another reader of the same file handles are accepted, with any content.
-  const cv::FileStorage other = parseYaml("overlay:\n  size: 2\n");
-  EXPECT_EQ(errorMessage([&] { requireKeysWrittenBy(other.root(), "", writer, {"overlay"}); }),
-            "(no error)");
+  const YamlNode other = parseYaml("overlay:\n  size: 2\n");
+  EXPECT_EQ(errorMessage([&] { requireKeysWrittenBy(other, writer, {"overlay"}); }), "(no error)");
 }

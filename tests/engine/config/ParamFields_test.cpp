@@ -65,7 +65,7 @@ std::string yamlOf(const Box& box) {
 }
 
 std::string readError(const std::string& yaml) {
-  cv::FileStorage fs = parseYaml(yaml);
+  const YamlNode fs = parseYaml(yaml);
   Box box;
   return errorMessage([&] { box.read(fs["box"]); });
 }
@@ -103,7 +103,7 @@ TEST(ParamFields, ReadsWhatItWroteAndKeepsAbsentKeys) {
   EXPECT_EQ(out.inner.window, 9);
   EXPECT_EQ(out.inner.every, 3);
 
-  cv::FileStorage fs = parseYaml("box: { ratio: 0.25 }\n");
+  const YamlNode fs = parseYaml("box: { ratio: 0.25 }\n");
   Box partial;
   partial.read(fs["box"]);
   EXPECT_EQ(partial.ratio, 0.25);
@@ -112,27 +112,35 @@ TEST(ParamFields, ReadsWhatItWroteAndKeepsAbsentKeys) {
 }
 
 TEST(ParamFields, TheWrittenKeysAreTheKnownOnes) {
-  EXPECT_EQ(readError("box: { cuont: 3 }\n"), "box.cuont: unknown key — did you mean box.count?");
-  EXPECT_EQ(readError("box: { inner: { windw: 3 } }\n"),
-            "box.inner.windw: unknown key — did you mean box.inner.window?");
+  EXPECT_EQ(readError("box: { cuont: 3 }\n"),
+            "line 1: box.cuont: unknown key — did you mean box.count?");
+  EXPECT_EQ(readError("box:\n  count: 3\n  inner: { windw: 3 }\n"),
+            "line 3: box.inner.windw: unknown key — did you mean box.inner.window?");
 }
 
-TEST(ParamFields, ChecksEachRuleNamingSectionAndKey) {
-  EXPECT_EQ(readError("box: { count: 11 }\n"), "parameter 'box.count' must lie in [1, 10], got 11");
-  EXPECT_EQ(readError("box: { ratio: 1.5 }\n"),
-            "parameter 'box.ratio' must lie in [0.000000, 1.000000], got 1.500000");
-  EXPECT_EQ(readError("box: { count: many }\n"), "parameter 'box.count' must be an integer");
+// Read from a file, a value's error names its line and its dotted name in the file.
+TEST(ParamFields, ChecksEachRuleNamingLineSectionAndKey) {
+  EXPECT_EQ(readError("box: { count: 11 }\n"),
+            "line 1: parameter 'box.count' must lie in [1, 10], got 11");
+  EXPECT_EQ(readError("box:\n  ratio: 1.5\n"),
+            "line 2: parameter 'box.ratio' must lie in [0.000000, 1.000000], got 1.500000");
+  EXPECT_EQ(readError("box: { count: many }\n"),
+            "line 1: parameter 'box.count' must be an integer");
+  EXPECT_EQ(readError("box: { count: '3' }\n"), "line 1: parameter 'box.count' must be an integer");
   EXPECT_EQ(readError("box: { width: 2.5 }\n"),
-            "parameter 'box.width' must lie in [0.500000, 2.000000], got 2.500000");
-  EXPECT_EQ(readError("box: { dots: 2 }\n"), "parameter 'box.dots' must be true or false");
-  EXPECT_EQ(readError("box: { shade: grey }\n"),
-            "parameter 'box.shade' must be 'light' or 'dark', got 'grey'");
-  EXPECT_EQ(readError("box: { inner: { window: 4 } }\n"), "parameter 'inner.window' must be odd");
-  EXPECT_EQ(readError("box: { inner: { window: 11 } }\n"),
-            "parameter 'inner.window' must lie in [3, 9], got 11");
+            "line 1: parameter 'box.width' must lie in [0.500000, 2.000000], got 2.500000");
+  EXPECT_EQ(readError("box: { dots: 2 }\n"), "line 1: parameter 'box.dots' must be true or false");
+  EXPECT_EQ(readError("box:\n\n  shade: grey\n"),
+            "line 3: parameter 'box.shade' must be 'light' or 'dark', got 'grey'");
+  EXPECT_EQ(readError("box: { inner: { window: 4 } }\n"),
+            "line 1: parameter 'box.inner.window' must be odd");
+  EXPECT_EQ(readError("box:\n  inner:\n    window: 11\n"),
+            "line 3: parameter 'box.inner.window' must lie in [3, 9], got 11");
   EXPECT_EQ(readError("box: { inner: { every: 1 } }\n"),
-            "parameter 'inner.every' must lie in [2, 10], got 1");
+            "line 1: parameter 'box.inner.every' must lie in [2, 10], got 1");
   EXPECT_EQ(readError("box: { inner: { every: 0 } }\n"), "(no error)");  // 0: off
+  EXPECT_EQ(readError("box: { inner: [1, 2] }\n"),
+            "line 1: parameter section 'box.inner' must be a map of key: value");
 }
 
 TEST(ParamFields, TheFirstBadFieldInListOrderIsNamed) {

@@ -1,18 +1,19 @@
 #pragma once
-// Shared by the parameter-struct tests: YAML text -> FileStorage, a write/read round trip, and
-// (ErrorMessage.hpp) the message of a throw.
+// Shared by the parameter-struct tests: YAML text -> its root YamlNode (as a user's file is read),
+// a write/read round trip, and (ErrorMessage.hpp) the message of a throw.
 #include <opencv2/core.hpp>
 #include <string>
 
 #include "ErrorMessage.hpp"
+#include "engine/config/ConfigFile.hpp"
+#include "engine/config/YamlNode.hpp"
 
 namespace reftrack::test {
 
-inline cv::FileStorage parseYaml(const std::string& yaml) {
-  return cv::FileStorage("%YAML:1.0\n" + yaml, cv::FileStorage::READ | cv::FileStorage::MEMORY);
-}
+inline YamlNode parseYaml(const std::string& yaml) { return readConfigText(yaml, "test YAML"); }
 
-// Writes a section with `write` and reads it back into `out`.
+// Writes a section with `write` (OpenCV's FileStorage, as the program saves it) and reads it
+// back into `out` (as a user's file is read).
 template <class Params>
 void roundTrip(const Params& in, Params& out) {
   cv::FileStorage w(".yml", cv::FileStorage::WRITE | cv::FileStorage::MEMORY);
@@ -20,9 +21,7 @@ void roundTrip(const Params& in, Params& out) {
     << "{";
   in.write(w);
   w << "}";
-  const std::string text = w.releaseAndGetString();
-  cv::FileStorage r(text, cv::FileStorage::READ | cv::FileStorage::MEMORY);
-  out.read(r["s"]);
+  out.read(parseYaml(w.releaseAndGetString())["s"]);
 }
 
 }  // namespace reftrack::test

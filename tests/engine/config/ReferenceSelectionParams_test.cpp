@@ -29,7 +29,7 @@ TEST(ReferenceSelectionParams, RoundTrip) {
 
 TEST(ReferenceSelectionParams, MissingKeysKeepDefaults) {
   ReferenceSelectionParams p;
-  const cv::FileStorage fs = parseYaml("references:\n  switch_after_frames: 9\n");
+  const YamlNode fs = parseYaml("references:\n  switch_after_frames: 9\n");
   p.read(fs["references"]);
   EXPECT_EQ(p.switchAfterFrames, 9);
   EXPECT_EQ(p.minSharedPoints, ReferenceSelectionParams{}.minSharedPoints);
@@ -54,7 +54,7 @@ TEST(ReferenceSelectionParams, EveryBadFieldIsNamed) {
     mutate(p);
     EXPECT_NE(errorMessage([&] { p.check(); }).find(field), std::string::npos) << field;
   }
-  const cv::FileStorage fs = parseYaml("references:\n  switch_margin: 2.0\n");
+  const YamlNode fs = parseYaml("references:\n  switch_margin: 2.0\n");
   ReferenceSelectionParams p;
   EXPECT_NE(errorMessage([&] { p.read(fs["references"]); }).find("references.switch_margin"),
             std::string::npos);

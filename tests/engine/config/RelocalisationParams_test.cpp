@@ -67,10 +67,9 @@ TEST(RelocalisationParams, MissingKeysKeepDefaults) {
 TEST(RelocalisationParams, FuzzSeedsCarryTheFinerLevelKeys) {
   const auto seeds = sourceDir() / "tests" / "fuzz" / "corpus" / "params_file";
   for (const char* name : {"tracker_defaults.yml", "preparation_defaults.yml"}) {
-    const cv::FileStorage fs((seeds / name).string(), cv::FileStorage::READ);
-    ASSERT_TRUE(fs.isOpened()) << name;
+    const YamlNode root = readConfigFile(seeds / name, name);
     for (const char* key : {"reference_finer_levels", "frame_finer_levels"})
-      EXPECT_TRUE(fs["relocalisation"][key].isInt()) << name << ": relocalisation." << key;
+      EXPECT_TRUE(root["relocalisation"][key].integer()) << name << ": relocalisation." << key;
   }
   EXPECT_EQ(TrackerParams::load(seeds / "tracker_defaults.yml").relocalisation.frameFinerLevels,
             RelocalisationParams{}.frameFinerLevels);
@@ -117,12 +116,11 @@ TEST(RelocalisationParams, EveryBadFieldIsNamed) {
     mutate(p);
     EXPECT_NE(errorMessage([&] { p.check(); }).find(field), std::string::npos) << field;
   }
-  // read() checks too: a bad value in a file is reported with its key.
+  // read() checks too: a bad value in a file is reported with its line and key.
   P p;
-  EXPECT_NE(errorMessage([&] {
-              p.read(parseYaml("relocalisation:\n  ratio: 3\n")["relocalisation"]);
-            }).find("relocalisation.ratio"),
-            std::string::npos);
+  const std::string ratio =
+      errorMessage([&] { p.read(parseYaml("relocalisation:\n  ratio: 3\n")["relocalisation"]); });
+  EXPECT_EQ(ratio.rfind("line 2: parameter 'relocalisation.ratio' must lie in", 0), 0u) << ratio;
   EXPECT_NE(errorMessage([&] {
               p.read(parseYaml("relocalisation:\n  keypoints: 4\n")["relocalisation"]);
             }).find("relocalisation.keypoints"),

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 
 #include "TestPaths.hpp"
@@ -99,9 +100,14 @@ TEST(MotionModelFile, UnknownKeysNameTheNearestAndTheYamlLineIsOptional) {
     EXPECT_NE(pos, std::string::npos) << from;
     return pos == std::string::npos ? text : text.replace(pos, from.size(), to);
   };
+  // The file's line of `key`, 1-based.
+  const auto lineOf = [&](const std::string& key) {
+    return std::to_string(1 + std::count(good.begin(), good.begin() + good.find(key), '\n'));
+  };
   // A misspelt scalar key and a misspelt matrix (a map in YAML, but a value here).
   EXPECT_NE(load(replaced("frame_count:", "frames_count:"))
-                .find("m.yml': frames_count: unknown key — did you mean frame_count?"),
+                .find("m.yml': line " + lineOf("frame_count:") +
+                      ": frames_count: unknown key — did you mean frame_count?"),
             std::string::npos);
   EXPECT_NE(
       load(replaced("weights:", "wieghts:")).find("wieghts: unknown key — did you mean weights?"),

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <iostream>
@@ -157,10 +158,14 @@ TEST(PinholeCamera, UnknownKeysNameTheNearestAndTheYamlLineIsOptional) {
   // A misspelt distortion matrix would otherwise leave the lens undistorted in silence.
   std::string misspelt = good;
   misspelt.replace(misspelt.find("distortion_coefficients"), 23, "distortion_coefficents");
-  EXPECT_NE(loadError(writeFile(dir, "key.yml", misspelt))
-                .find("key.yml': distortion_coefficents: unknown key — did you mean "
-                      "distortion_coefficients?"),
-            std::string::npos);
+  EXPECT_NE(
+      loadError(writeFile(dir, "key.yml", misspelt))
+          .find("key.yml': line " +
+                std::to_string(
+                    1 + std::count(good.begin(), good.begin() + good.find("distortion_"), '\n')) +
+                ": distortion_coefficents: unknown key — did you mean "
+                "distortion_coefficients?"),
+      std::string::npos);
   EXPECT_NE(loadError(writeFile(dir, "section.yml", good + "camera:\n  fx: 3\n"))
                 .find("camera: unknown section — did you mean"),
             std::string::npos);

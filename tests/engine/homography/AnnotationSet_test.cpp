@@ -74,10 +74,10 @@ TEST(AnnotationSet, UnknownKeysNameTheNearestKnownKey) {
     return std::string("(no error)");
   };
   EXPECT_NE(message("lables:\n  - { text: a, x: 1, y: 2 }\n")
-                .find("l.yml': lables: unknown key — did you mean labels?"),
+                .find("l.yml': line 1: lables: unknown key — did you mean labels?"),
             std::string::npos);
   EXPECT_NE(message("labels:\n  - { text: a, x: 1, y: 2 }\n  - { txt: b, x: 1, y: 2 }\n")
-                .find("labels[1].txt: unknown key — did you mean labels[1].text?"),
+                .find("line 3: labels[1].txt: unknown key — did you mean labels[1].text?"),
             std::string::npos);
   EXPECT_NE(message("labels:\n  - { text: a, x: 1, y: 2, style: { size: 3 } }\n")
                 .find("labels[0].style: unknown section"),

@@ -5,6 +5,7 @@
 #include <random>
 
 #include "PlanarTestScene.hpp"
+#include "engine/config/ConfigFile.hpp"
 #include "engine/core/Error.hpp"
 #include "engine/features/CornerDetector.hpp"
 #include "engine/reference/ReferencePreparer.hpp"
@@ -190,9 +191,8 @@ TEST(EpipolarMatcherParams, CheckNamesTheBadFieldAndYamlRoundTrips) {
       << "{";
   q.write(out);
   out << "}";
-  cv::FileStorage in(out.releaseAndGetString(), cv::FileStorage::READ | cv::FileStorage::MEMORY);
   EpipolarMatcherParams r;
-  r.read(in["matching"]);
+  r.read(readConfigText(out.releaseAndGetString(), "parameters")["matching"]);
   EXPECT_EQ(r.halfWindow, 4);
   EXPECT_DOUBLE_EQ(r.slantDeg, 30.0);
   EXPECT_DOUBLE_EQ(r.maxReprojectionErrorPx, 0.7);

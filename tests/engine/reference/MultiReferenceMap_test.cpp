@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -408,8 +409,12 @@ TEST(MultiReferenceMap, LoadNamesUnknownKeysAndNeedsNoYamlLine) {
     const std::string message = loadError(map);
     EXPECT_NE(message.find(expected), std::string::npos) << message;
   };
+  const auto lineOf = [&](const std::string& key) {
+    return std::to_string(1 + std::count(yml.begin(), yml.begin() + yml.find(key), '\n'));
+  };
   expectError(variant("top", replaced("", "point_count:", "points_count:")),
-              "map.yml': points_count: unknown key — did you mean point_count?");
+              "map.yml': line " + lineOf("point_count:") +
+                  ": points_count: unknown key — did you mean point_count?");
   expectError(variant("view", replaced("reference_01.png", "anchored:", "anchord:")),
               "views[1].anchord: unknown key — did you mean views[1].anchored?");
   expectError(variant("section", replaced("reference_01.png", "keypoints:", "keypoint:")),

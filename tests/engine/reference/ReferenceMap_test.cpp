@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
 
@@ -99,7 +100,10 @@ TEST(ReferenceMap, LoadNamesUnknownKeysAndNeedsNoYamlLine) {
   std::string misspelt = yml;
   misspelt.replace(misspelt.find("pose_source:"), 12, "pose_sourse:");
   EXPECT_NE(loadError(variant("key", misspelt))
-                .find("map.yml': pose_sourse: unknown key — did you mean pose_source?"),
+                .find("map.yml': line " +
+                      std::to_string(1 + std::count(yml.begin(),
+                                                    yml.begin() + yml.find("pose_source:"), '\n')) +
+                      ": pose_sourse: unknown key — did you mean pose_source?"),
             std::string::npos);
   ASSERT_EQ(yml.rfind("%YAML:1.0\n", 0), 0u);
   EXPECT_EQ(loadError(variant("bare", yml.substr(10))), "(no error)");

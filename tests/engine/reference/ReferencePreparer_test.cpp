@@ -11,6 +11,8 @@
 #include "ErrorMessage.hpp"
 #include "PlanarTestScene.hpp"
 #include "TestPaths.hpp"
+#include "engine/config/ConfigFile.hpp"
+#include "engine/config/ConfigValue.hpp"
 #include "engine/core/Error.hpp"
 
 using namespace reftrack;
@@ -249,10 +251,49 @@ TEST(ReferencePreparerParams, UnknownKeysNameTheNearestAndTheYamlLineIsOptional)
   EXPECT_EQ(load("matching:\n  max_peak_offset_px: 2\n"), "(no error)");
   EXPECT_EQ(load("marker: {ambiguity_ratio: 1.7}\n"), "(no error)");
   // A caller that reads more sections from the same file names them.
-  const cv::FileStorage extend("%YAML:1.0\nextension: {max_angle_deg: 10}\n",
-                               cv::FileStorage::READ | cv::FileStorage::MEMORY);
+  const YamlNode extend = readConfigText("%YAML:1.0\nextension: {max_angle_deg: 10}\n", "f");
   ReferencePreparerParams p;
-  EXPECT_NE(test::errorMessage([&] { p.read(extend.root()); }).find("extension: unknown section"),
+  EXPECT_NE(test::errorMessage([&] { p.read(extend); }).find("line 2: extension: unknown section"),
             std::string::npos);
-  EXPECT_EQ(test::errorMessage([&] { p.read(extend.root(), {"extension"}); }), "(no error)");
+  EXPECT_EQ(test::errorMessage([&] { p.read(extend, {"extension"}); }), "(no error)");
+  // A value out of range in a hand-read section names its line too.
+  EXPECT_EQ(
+      test::errorMessage(
+          [&] { p.read(readConfigText("preparation:\n  min_baseline_m: -1\n", "f")); }),
+      "line 2: parameter 'preparation.min_baseline_m' must lie in [0.000000, 1000000.000000], "
+      "got -1.000000");
+}
+
+// preparation.refine_given_poses (off by default: given poses are kept) is written, read back
+// by the YAML reader with its line, and the fuzz target's seed of the defaults
+// (tests/fuzz/corpus/params_file) is what the writer writes today.
+TEST(ReferencePreparerParams, RefineGivenPosesIsReadAndSavedAndTheFuzzSeedIsCurrent) {
+  EXPECT_FALSE(ReferencePreparerParams{}.refineGivenPoses);
+  EXPECT_TRUE(ReferencePreparerParams{}.refinePoses);
+  ReferencePreparerParams q;
+  q.refineGivenPoses = true;
+  const auto dir = test::freshTempDir("ReferencePreparerParams_refineGiven");
+  std::ofstream(dir / "params.yml") << q.toYaml();
+  EXPECT_TRUE(ReferencePreparerParams::load(dir / "params.yml").refineGivenPoses);
+
+  ReferencePreparerParams p;
+  p.read(readConfigText("preparation: {refine_given_poses: true}  # mocap poses\n", "f"));
+  EXPECT_TRUE(p.refineGivenPoses);
+  EXPECT_TRUE(p.refines(true));
+  const std::string bad = test::errorMessage(
+      [&] { p.read(readConfigText("%YAML:1.0\npreparation:\n  refine_given_poses: 2\n", "f")); });
+  EXPECT_EQ(bad.rfind("line 3: ", 0), 0u) << bad;
+  EXPECT_NE(bad.find("preparation.refine_given_poses"), std::string::npos) << bad;
+  EXPECT_NE(test::errorMessage(
+                [&] { p.read(readConfigText("preparation:\n  refine_given_pose: true\n", "f")); })
+                .find("line 2: preparation.refine_given_pose: unknown key — did you mean "
+                      "preparation.refine_given_poses?"),
+            std::string::npos);
+
+  writeParameterFile(dir / "defaults.yml",
+                     [](cv::FileStorage& fs) { ReferencePreparerParams{}.write(fs); });
+  EXPECT_EQ(test::readTextFile(test::sourceDir() /
+                               "tests/fuzz/corpus/params_file/preparation_defaults.yml"),
+            test::readTextFile(dir / "defaults.yml"))
+      << "refresh the seed: copy " << (dir / "defaults.yml").string();
 }

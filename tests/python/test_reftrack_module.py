@@ -1,0 +1,195 @@
+"""The Python module `reftrack` (python/), run by CTest with Debian's python3 on the build tree.
+
+The poses tracked from Python on a simulated clip (simulated_clip.py) are checked against the
+simulator's ground truth, bad input against the exceptions it must raise, and the binding's time
+per frame against the engine's own.
+"""
+
+import ast
+import pathlib
+import statistics
+import subprocess
+import time
+import unittest
+
+import cv2
+import numpy as np
+import reftrack
+import simulated_clip
+from simulated_clip import BINARY, CLIP, FRAMES, MAP, WORK
+
+
+def setUpModule():
+    simulated_clip.make()
+
+
+def frames():
+    return [cv2.imread(str(p)) for p in sorted((CLIP / "frames").glob("*.png"))]
+
+
+def true_centres():
+    # TUM lines: timestamp, camera centre in the world (tx ty tz), orientation quaternion.
+    return np.loadtxt(CLIP / "groundtruth.txt")[:, 1:4]
+
+
+def centre(world_to_camera):
+    return -world_to_camera[:3, :3].T @ world_to_camera[:3, 3]
+
+
+class TrackerFromPython(unittest.TestCase):
+    def test_version_is_the_command_lines(self):
+        out = subprocess.run([BINARY, "--version"], check=True, capture_output=True, text=True)
+        self.assertEqual(out.stdout.strip(), "reftrack " + reftrack.__version__)
+
+    def test_type_stubs_declare_what_the_module_has(self):
+        # reftrack.pyi lies beside the module, in the build tree as after an install.
+        stub = ast.parse((pathlib.Path(reftrack.__file__).parent / "reftrack.pyi").read_text())
+        classes = {node.name: node for node in stub.body if isinstance(node, ast.ClassDef)}
+        self.assertEqual(set(classes), {"Error", "Result", "Tracker"})
+        for name, node in classes.items():
+            declared = {n.name for n in node.body if isinstance(n, ast.FunctionDef)}
+            actual = {m for m in vars(getattr(reftrack, name)) if not m.startswith("_")}
+            self.assertEqual(declared, actual, name)
+
+    def test_camera_centres_lie_within_5_mm_of_the_truth(self):
+        tracker = reftrack.Tracker.open_map(MAP)
+        self.assertEqual(tracker.mode, "6dof")
+        self.assertEqual(tracker.image_size, (640, 480))
+        self.assertEqual(tracker.camera_matrix.shape, (3, 3))
+        truth = true_centres()
+        self.assertEqual(len(truth), FRAMES)
+        errors = []
+        for k, frame in enumerate(frames()):
+            r = tracker.track(frame)
+            self.assertEqual(r.frame_index, k)
+            self.assertIn(r.state, ("initialising", "tracking", "lost"))
+            if r.state != "tracking":
+                self.assertIsNone(r.world_to_camera)
+                self.assertTrue(r.reason)
+                continue
+            T = r.world_to_camera
+            self.assertEqual((T.shape, T.dtype), ((4, 4), np.float64))
+            np.testing.assert_allclose(T[3], [0, 0, 0, 1])
+            self.assertEqual(r.covariance.shape, (6, 6))
+            self.assertIsNone(r.homography)
+            self.assertGreater(r.inliers, 0)
+            self.assertGreaterEqual(min(r.reference_a, r.reference_b), 0)
+            self.assertIsInstance(r.relocalised, bool)
+            self.assertGreater(r.milliseconds, 0.0)
+            errors.append(1000 * np.linalg.norm(centre(T) - truth[k]))
+        print(f"tracked {len(errors)} of {FRAMES} frames; camera centre error mean "
+              f"{np.mean(errors):.2f} mm, max {np.max(errors):.2f} mm")
+        self.assertGreaterEqual(len(errors), FRAMES - 2)
+        self.assertLess(max(errors), 5.0)
+
+    def test_grey_frames_strided_views_and_copies_track_alike(self):
+        clip = frames()[:6]
+        runs = {}
+        tracker = reftrack.Tracker.open_map(MAP)
+        for name, convert in {
+            "bgr": lambda f: f,
+            "grey": lambda f: cv2.cvtColor(f, cv2.COLOR_BGR2GRAY),
+            "grey HxWx1": lambda f: cv2.cvtColor(f, cv2.COLOR_BGR2GRAY)[:, :, np.newaxis],
+            # rows of a wider image: read in place with its row stride
+            "row view": lambda f: np.pad(f, ((0, 0), (0, 40), (0, 0)))[:, :640],
+            # Fortran order and a flipped view: copied once
+            "fortran": lambda f: np.asfortranarray(f),
+            "flipped twice": lambda f: f[::-1][::-1],
+        }.items():
+            tracker.reset()  # each layout from the same start
+            runs[name] = [tracker.track(convert(f)).world_to_camera for f in clip]
+        for name in ("row view", "fortran", "flipped twice"):
+            for a, b in zip(runs["bgr"], runs[name]):
+                np.testing.assert_array_equal(a, b, err_msg=name)
+        for a, b in zip(runs["grey"], runs["grey HxWx1"]):
+            np.testing.assert_array_equal(a, b)
+        self.assertTrue(any(T is not None for T in runs["grey"]))
+
+    def test_parameters_from_a_dict_or_a_yaml_file(self):
+        clip = frames()[:4]
+        yaml = WORK / "params.yml"
+        yaml.write_text("ransac: {max_iterations: &cap 90}  # flow map\n"
+                        "relocalisation:\n  ransac_iterations: *cap\n")
+        for params in ({"ransac": {"max_iterations": 90, "seed": np.int64(2)},
+                        "correlation": {"min_score": np.float32(0.7)}}, yaml, str(yaml)):
+            tracker = reftrack.Tracker.open_map(MAP, params=params)
+            states = [tracker.track(f).state for f in clip]
+            self.assertIn("tracking", states, params)
+
+    def test_reset_starts_again_at_frame_0(self):
+        tracker = reftrack.Tracker.open_map(MAP)
+        clip = frames()[:3]
+        for f in clip:
+            tracker.track(f)
+        tracker.reset()
+        self.assertEqual(tracker.track(clip[0]).frame_index, 0)
+
+    def test_homography_mode_against_one_reference(self):
+        tracker = reftrack.Tracker.open_reference(CLIP / "reference_a.png",
+                                                  camera=CLIP / "camera.yml")
+        self.assertEqual(tracker.mode, "homography")
+        reference = cv2.imread(str(CLIP / "reference_a.png"))
+        r = tracker.track(reference)  # the reference itself: the identity
+        self.assertEqual(r.state, "tracking", r.reason)
+        np.testing.assert_allclose(r.homography / r.homography[2, 2], np.eye(3), atol=1e-3)
+        self.assertEqual(r.world_to_camera.shape, (4, 4))  # rotation only, with a camera
+        self.assertIsNone(r.covariance)
+        self.assertIsNone(reftrack.Tracker.open_reference(CLIP / "reference_a.png")
+                          .track(reference).world_to_camera)
+
+    def test_bad_input_raises_a_clear_exception(self):
+        tracker = reftrack.Tracker.open_map(MAP)
+        frame = frames()[0]
+        cases = [
+            (lambda: tracker.track(frame.astype(np.float32)), TypeError,
+             "frame must be a uint8 image, got dtype float32"),
+            (lambda: tracker.track(frame.tolist()), TypeError, "frame must be a numpy array"),
+            (lambda: tracker.track(np.zeros((480, 640, 4), np.uint8)), ValueError,
+             "frame must be HxW (grey) or HxWx3 (BGR), got shape (480, 640, 4)"),
+            (lambda: tracker.track(frame[:120, :160]), reftrack.Error,
+             "tracker: frame is 160x120 but the map is 640x480"),
+            (lambda: reftrack.Tracker.open_map(WORK / "absent"), reftrack.Error,
+             "does not exist (run `reftrack prepare` first)"),
+            (lambda: reftrack.Tracker.open_map(MAP, params={"ransac": {"max_iteratons": 80}}),
+             reftrack.Error,
+             "ransac.max_iteratons: unknown key — did you mean ransac.max_iterations?"),
+            (lambda: reftrack.Tracker.open_map(MAP, params={"ransac": {"seed": float("nan")}}),
+             reftrack.Error, "parameter 'ransac.seed' must be an integer"),
+            (lambda: reftrack.Tracker.open_map(MAP, params={"ransac": {"seed": object()}}),
+             TypeError, "parameters: ransac.seed is a object"),
+            (lambda: reftrack.Tracker.open_map(MAP, params=3), TypeError,
+             "params must be None, a YAML file's path or a dict, got int"),
+            (lambda: reftrack.Tracker.open_reference(WORK / "none.png"), reftrack.Error,
+             "reference image"),
+        ]
+        for call, kind, message in cases:
+            with self.assertRaises(kind) as caught:
+                call()
+            self.assertIn(message, str(caught.exception))
+        bad = WORK / "bad.yml"
+        bad.write_text("mode: 6dof\n# tuned\nransac: {max_iteratons: 80}\n")
+        with self.assertRaisesRegex(reftrack.Error, r"line 3: ransac\.max_iteratons: .* "
+                                                    r"ransac\.max_iterations\?"):
+            reftrack.Tracker.open_map(MAP, params=bad)
+        self.assertTrue(issubclass(reftrack.Error, RuntimeError))
+        self.assertEqual(tracker.track(frame).frame_index, 0)  # failed calls counted no frame
+
+    def test_the_binding_adds_at_most_a_tenth_of_a_millisecond_per_frame(self):
+        # Python's time around track() less the engine's own (Result.milliseconds): the binding's
+        # cost, i.e. checking and wrapping the numpy frame, releasing the GIL and the Result.
+        tracker = reftrack.Tracker.open_map(MAP)
+        overheads = []
+        for frame in frames():
+            start = time.perf_counter()
+            r = tracker.track(frame)
+            T = r.world_to_camera  # and reading the pose
+            overheads.append(1000 * (time.perf_counter() - start) - r.milliseconds)
+        median = statistics.median(overheads)
+        print(f"binding overhead per frame: median {1000 * median:.1f} us, "
+              f"min {1000 * min(overheads):.1f} us over {len(overheads)} frames")
+        self.assertIsNotNone(T)
+        self.assertLess(median, 0.1)
+
+
+if __name__ == "__main__":
+    unittest.main(verbosity=2)
