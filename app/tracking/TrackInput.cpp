@@ -17,6 +17,14 @@ TrackInput::TrackInput(const std::string& input, cv::Size size, std::string size
   source_ = openFrameSource(input, options);
 }
 
+TrackInput TrackInput::anySize(const std::string& input, cv::Size simSize, int maxFrames,
+                               bool recording) {
+  TrackInput t(input, simSize, "frame 0 is", maxFrames, recording);
+  t.anySize_ = true;
+  t.size_ = cv::Size();
+  return t;
+}
+
 int TrackInput::expectedCount() const {
   const int count = maxFrames_ > 0
                         ? std::min(maxFrames_, source_->frameCount().value_or(maxFrames_))
@@ -32,6 +40,7 @@ std::optional<Frame> TrackInput::next() {
   } catch (const Error& e) {
     error_ = e.what();
   }
+  if (frame && anySize_ && read_ == 0) size_ = frame->image.size();
   if (frame && frame->image.size() != size_) {
     error_ = "input '" + input_ + "' frame " + std::to_string(frame->index) + " is " +
              std::to_string(frame->image.cols) + "x" + std::to_string(frame->image.rows) + " but " +

@@ -1,9 +1,9 @@
 #pragma once
 // TrackInput: the frames a `reftrack track` run reads (either mode), with the headless GL context
 // that a `sim:` input or a recording needs. At most maxFrames (-1: all). A frame that cannot be
-// read, or is not of the expected size, ends the input mid-stream like its end, so every output
-// written up to it is kept; the run reports it once the outputs are finished
-// (throwIfCutShort). A wrong size on the very first frame throws at once.
+// read, or is not of the expected size (a given one, or else the first frame's), ends the input
+// mid-stream like its end, so every output written up to it is kept; the run reports it once the
+// outputs are finished (throwIfCutShort). A wrong size on the very first frame throws at once.
 #include <memory>
 #include <opencv2/core.hpp>
 #include <optional>
@@ -20,6 +20,12 @@ class TrackInput {
   // `sizeOwner` ends the wrong-size message before the size ("the camera is calibrated for").
   TrackInput(const std::string& input, cv::Size size, std::string sizeOwner, int maxFrames,
              bool recording);
+  // Frames of any size, all of the first frame's; a `sim:` input is rendered at simSize.
+  static TrackInput anySize(const std::string& input, cv::Size simSize, int maxFrames,
+                            bool recording);
+
+  // The frames' size: the given one, or the first frame's once read (empty before).
+  cv::Size frameSize() const { return size_; }
 
   FrameSource& source() { return *source_; }
   // Frames the run will read, for the progress bar (0 when the source cannot tell).
@@ -36,6 +42,7 @@ class TrackInput {
  private:
   std::string input_, sizeOwner_;
   cv::Size size_;
+  bool anySize_ = false;  // size_ is set by the first frame
   int maxFrames_;
   std::unique_ptr<render::GlContext> gl_;
   std::unique_ptr<FrameSource> source_;
