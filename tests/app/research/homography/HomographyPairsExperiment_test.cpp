@@ -75,7 +75,7 @@ TEST(HomographyPairsExperiment, BuildsAndRegistersPairsOfASequenceFolder) {
   EXPECT_LT(cv::norm(pairs[0].truth - H12), 1e-12);
   int viewpoint = 0, zoom = 0;
   for (const HomographyPair& p : pairs) {
-    EXPECT_EQ(p.sequence, "seq");
+    EXPECT_EQ(p.sequence, p.kind == "photometric" ? "seq" : "seq-views");
     EXPECT_EQ(p.frame.size(), size);
     viewpoint += p.kind == "viewpoint" ? 1 : 0;
     zoom += p.kind == "zoom-rotation" ? 1 : 0;
@@ -85,6 +85,7 @@ TEST(HomographyPairsExperiment, BuildsAndRegistersPairsOfASequenceFolder) {
 
   PairsOptions o;
   o.dataDir = dir;
+  o.hardSets = false;  // HardHomographyPairs_test covers those
   const PairsResult r = runPairsExperiment(o);
   ASSERT_EQ(r.methods.size(), 5u);
   EXPECT_EQ(r.methods[0].name, "reftrack");
@@ -99,6 +100,11 @@ TEST(HomographyPairsExperiment, BuildsAndRegistersPairsOfASequenceFolder) {
   EXPECT_EQ(wrong, 0);
   EXPECT_GE(registered, 17);
 
+  // Only the sets asked for; a set that is not there is an error.
+  o.onlySets = {"seq"};
+  EXPECT_EQ(runPairsExperiment(o).pairs.size(), 1u);
+  o.onlySets = {"graf-sim"};
+  EXPECT_THROW(runPairsExperiment(o), Error);
   EXPECT_THROW(buildHomographyPairs(dir / "seq", 2.0, 1), Error);  // no sequence folder inside
   EXPECT_THROW(buildHomographyPairs(dir / "missing", 2.0, 1), Error);
 }
