@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <memory>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "app/cli/Interruption.hpp"
 #include "app/cli/ProgressBar.hpp"
@@ -18,6 +19,25 @@
 #include "render/context/GlContext.hpp"
 
 namespace reftrack::app {
+
+namespace {
+
+// `image` scaled to fit `size` (aspect kept, centred on black): a frame of another size than the
+// recording's first (an image folder of several cameras' photos) in the recording.
+cv::Mat fitInto(const cv::Mat& image, cv::Size size) {
+  if (image.size() == size) return image;
+  const double s = std::min(static_cast<double>(size.width) / image.cols,
+                            static_cast<double>(size.height) / image.rows);
+  const cv::Size fitted(std::max(1, static_cast<int>(std::lround(image.cols * s))),
+                        std::max(1, static_cast<int>(std::lround(image.rows * s))));
+  cv::Mat scaled, out(size, image.type(), cv::Scalar::all(0));
+  cv::resize(image, scaled, fitted, 0, 0, cv::INTER_AREA);
+  scaled.copyTo(out(cv::Rect((size.width - fitted.width) / 2, (size.height - fitted.height) / 2,
+                             fitted.width, fitted.height)));
+  return out;
+}
+
+}  // namespace
 
 HomographyTrackSummary runHomographyTrack(const HomographyTrackOptions& o) {
   cv::Mat reference;
@@ -77,6 +97,7 @@ HomographyTrackSummary runHomographyTrack(const HomographyTrackOptions& o) {
     ms.push_back(elapsed);
     summary.tracked += r.tracked ? 1 : 0;
     if (overlay) {
+      if (camera && camera->imageSize() != frame->image.size()) camera.reset();
       if (!camera) camera = PinholeCamera::fromFieldOfView(frame->image.size(), 60.0);
       if (!recorder)
         recorder =
@@ -87,7 +108,7 @@ HomographyTrackSummary runHomographyTrack(const HomographyTrackOptions& o) {
           overlay->composite(frame->image, *camera, result, settings,
                              "frame " + std::to_string(frame->index) + "  " + result.status, H,
                              labels, tracker.referenceSize(), tracker.referenceSharesCamera());
-      recorder->write(composite, frame->timestamp, std::nullopt);
+      recorder->write(fitInto(composite, recorder->frameSize()), frame->timestamp, std::nullopt);
     }
     ++summary.frames;
     progress.advance();

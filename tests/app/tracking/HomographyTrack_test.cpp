@@ -143,6 +143,43 @@ TEST(HomographyTrack, TracksAReferenceOfAnotherSizeThanTheFrames) {
   }
 }
 
+// Photos from several cameras in one folder (the issue's `--input <folder with imgN>`): frames of
+// 320x240 and of 480x360 (the same views enlarged), each registered; the recording keeps the
+// first frame's size, the larger frames fitted into it.
+TEST(HomographyTrack, TracksAFolderOfFramesOfSeveralSizes) {
+  const auto dir = writeStaticSequence("HomographyTrack_mixed");
+  for (int k : {2, 5}) {
+    char file[32];
+    std::snprintf(file, sizeof file, "%06d.png", k);
+    cv::Mat f = cv::imread((dir / "frames" / file).string());
+    cv::resize(f, f, {480, 360}, 0, 0, cv::INTER_CUBIC);
+    cv::imwrite((dir / "frames" / file).string(), f);
+  }
+  HomographyTrackOptions o;
+  o.reference = dir / "reference.png";
+  o.input = (dir / "frames").string();
+  o.csv = dir / "track.csv";
+  o.record = dir / "track.mp4";
+  const HomographyTrackSummary s = runHomographyTrack(o);
+  EXPECT_EQ(s.frames, 8);
+  EXPECT_EQ(s.tracked, 8);
+  std::ifstream in(o.csv);
+  std::string row;
+  std::getline(in, row);
+  for (int k = 0; std::getline(in, row); ++k) {
+    std::vector<double> v;
+    std::stringstream fields(row);
+    for (std::string f; std::getline(fields, f, ',');) v.push_back(std::atof(f.c_str()));
+    ASSERT_GE(v.size(), 13u);
+    // h11: 1 for the 320x240 frames, 1.5 for the enlarged ones.
+    EXPECT_NEAR(v[4] / v[12], k == 2 || k == 5 ? 1.5 : 1.0, 0.01) << row;
+  }
+  cv::VideoCapture video(o.record.string());
+  cv::Mat first;
+  video >> first;
+  EXPECT_EQ(first.size(), cv::Size(320, 240));
+}
+
 TEST(HomographyTrack, BadInputThrowsAndWritesNothing) {
   const auto dir = writeStaticSequence("HomographyTrack_bad");
   HomographyTrackOptions o;
