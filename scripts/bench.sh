@@ -3,7 +3,10 @@
 # run: homography mode vs ORB + findHomography, 6-DOF vs ORB + solvePnPRansac + KalmanFilter;
 # issue 13: the walkaround with N references (and its two-reference coverage), cold start,
 # kidnapped camera and the cost of N references vs two (ORB + solvePnPRansac cold start beside);
-# issue 14: 6-DOF on the real postcard clip (../shared/data, skipped when absent) vs ORB + PnP.
+# issue 14: 6-DOF on the real postcard clip (../shared/data, skipped when absent) vs ORB + PnP;
+# issue 24: the real desk clip with true poses (../shared/data/desk-chessboard, skipped when
+# absent): reftrack vs SIFT / AKAZE / ORB + PnP per frame and ORB + PnP + Kalman, in sequence and
+# shuffled order (table, CSV and plot in out/bench/desk-chessboard).
 # Usage: bench.sh [frames]   (default 300 frames per 6-DOF sequence; the walkaround runs 1000)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -29,6 +32,14 @@ if [[ -f "$postcard" ]]; then
   "$build/app/reftrack" bench-real --clip "$postcard" --passes 5
 else
   echo "bench-real skipped: $postcard not found (the shared real recordings)"
+fi
+desk="$root/../shared/data/desk-chessboard"
+if [[ -d "$desk/frames" ]]; then
+  "$build/app/reftrack" bench-real --input "$desk/frames" --camera "$desk/camera.yml" \
+    --gt "$desk/groundtruth.txt" --ref-frames 0,40 --cube-centre 0.16,-0.10,0 --cube-edge 0.1 \
+    --out "$out/desk-chessboard"
+else
+  echo "bench-real --input skipped: $desk not found (the shared real recordings)"
 fi
 # HD speed: homography and 6-DOF at 640x480, 1280x720 and 1920x1080 (thread CPU, baselines beside)
 bash "$root/scripts/bench-hd.sh" "$frames"

@@ -13,7 +13,7 @@
 #include "app/sources/FrameSourceFactory.hpp"
 #include "engine/config/ConfigValue.hpp"
 #include "engine/core/Error.hpp"
-#include "engine/reference/MapExtender.hpp"
+#include "engine/mapping/MapExtender.hpp"
 #include "engine/relocalisation/ReferenceKeypointBuilder.hpp"
 #include "render/context/GlContext.hpp"
 

@@ -21,6 +21,7 @@ struct TrackArgs {
   std::string input;
   int frames = -1;
   double cube = 0.1;
+  bool coldStarts = false;
 };
 
 // --mode when given; else homography with --reference, 6dof with --map, else the params' mode.
@@ -82,6 +83,10 @@ CommandRegistration registerTrackCommand(CLI::App& parent) {
       ->check(CLI::ExistingFile);
   sub->add_option("--frames", args->frames, "Process at most N frames")
       ->check(CLI::Range(1, 100000000));
+  sub->add_flag("--cold-starts", args->coldStarts,
+                "6dof: forget the past before every frame, so each frame is a cold start (the "
+                "start near a reference, then relocalisation): measures starts, never needed to "
+                "track");
   sub->add_option("--cube", args->cube, "6dof: cube edge in the recording (metres)")
       ->check(CLI::Range(1e-4, 100.0))
       ->capture_default_str();
@@ -111,6 +116,7 @@ CommandRegistration registerTrackCommand(CLI::App& parent) {
               o.record = args->record;
               o.maxFrames = args->frames;
               o.cubeSize = args->cube;
+              o.coldStarts = args->coldStarts;
               runSixDofTrack(o);
               return;
             }

@@ -34,7 +34,8 @@ std::string quoted(const std::string& text) {
 std::string csvHeader() {
   std::string h =
       "index,timestamp,status,tx,ty,tz,qx,qy,qz,qw,corners,matches_a,matches_b,three_view,"
-      "inliers,ms_total,reference_a,reference_b,reloc_attempted,reloc_succeeded,reloc_ms,"
+      "inliers,distinctive_inliers,ms_total,reference_a,reference_b,reloc_attempted,reloc_"
+      "succeeded,reloc_ms,"
       "rolling_shutter_readout";
   for (const char* s : kStages) {
     std::string name = s;
@@ -81,9 +82,13 @@ int runSixDofTrack(const SixDofTrackOptions& o) {
   while (!interruptRequested()) {
     const std::optional<Frame> frame = input.next();
     if (!frame) break;
+    if (o.coldStarts) tracker.tracker().reset();
     const TrackingResult result = tracker.process(frame->image, frame->index, frame->timestamp);
     const MultiReferenceResult& multi = tracker.last();
     const PoseTrackingResult& r = multi.tracking;
+    if (!multi.notice.empty()) {
+      std::fprintf(stderr, "note: %s\n", multi.notice.c_str());
+    }
     ms.push_back(r.totalMs);
     if (r.state == TrackingState::Tracking) {
       readout = r.rollingShutterReadout;
@@ -109,8 +114,8 @@ int runSixDofTrack(const SixDofTrackOptions& o) {
       csv << ",,,,,,,";
     }
     csv << ',' << r.corners << ',' << r.matchesA << ',' << r.matchesB << ',' << r.threeView << ','
-        << r.inliers << ',' << r.totalMs << ',' << multi.referenceA << ',' << multi.referenceB
-        << ',' << (multi.relocalisation.attempted ? 1 : 0) << ','
+        << r.inliers << ',' << r.distinctiveInliers << ',' << r.totalMs << ',' << multi.referenceA
+        << ',' << multi.referenceB << ',' << (multi.relocalisation.attempted ? 1 : 0) << ','
         << (multi.relocalisation.succeeded ? 1 : 0) << ',' << multi.relocalisation.ms << ','
         << r.rollingShutterReadout;
     for (const char* s : kStages) {

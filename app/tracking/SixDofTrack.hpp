@@ -19,6 +19,7 @@ struct SixDofTrackOptions {
   std::filesystem::path record;      // MP4 of the registered overlay; empty = none
   int maxFrames = -1;                // -1 = all
   double cubeSize = 0.1;             // metres, for the recorded overlay
+  bool coldStarts = false;           // reset the tracker before every frame
 };
 
 // Returns the number of frames processed; throws reftrack::Error on bad input.

@@ -95,6 +95,7 @@ struct Tracker::Impl {
                 : p.state == TrackingState::Lost   ? State::Lost
                                                    : State::Initialising;
     out.reason = p.message;
+    if (!r.notice.empty()) out.reason += (out.reason.empty() ? "" : "; ") + r.notice;
     out.inliers = p.inliers;
     out.referenceA = r.referenceA;
     out.referenceB = r.referenceB;

@@ -25,6 +25,7 @@ void PoseParams::fields(Self& p, const Field& field) {
   field("motion_model_file", p.motionModelFile);
   field("rolling_shutter_readout", p.rollingShutterReadout, Range{0.0, 1.0});
   field("estimate_rolling_shutter", p.estimateRollingShutter);
+  field("map_point_sd_scale", p.mapPointSdScale, Range{0.0, 100.0});
 }
 
 template struct ParamSection<PoseParams>;

@@ -42,6 +42,7 @@ void RelocalisationParams::fields(Self& p, const Field& field) {
   field("min_inlier_cells", p.minInlierCells, Range{1, 16});
   field("max_rotation_sigma_deg", p.maxRotationSigmaDeg, Range{0.0, 180.0});
   field("max_position_sigma_ratio", p.maxPositionSigmaRatio, Range{0.0, 10.0});
+  field("min_distinctive_inliers", p.minDistinctiveInliers, Range{0, 100000});
   field("triangulation_px", p.triangulationPx, Range{0.05, 100.0});
   field("min_parallax_deg", p.minParallaxDeg, Range{0.0, 90.0});
 }

@@ -19,6 +19,8 @@ void WideBaselineParams::fields(Self& p, const Field& field) {
   field("frame_to_frame_corners", p.frameToFrameCornersAt320x240, Range{8, 1000000});
   field("frame_corner_quality", p.frameCornerQuality, Range{1e-9, 1.0});
   field("seed_search", p.seedSearchAt320x240, Range{1, 10000});
+  field("align_frame_side", p.alignFrameSide);
+  field("align_half_window", p.alignHalfWindow, Range{1, 32});
 }
 
 template struct ParamSection<WideBaselineParams>;

@@ -33,6 +33,12 @@ struct WideBaselineParams : ParamSection<WideBaselineParams> {
   // +-seedSearch pixels (at 320x240, scaled) of the map points' projections, which absorbs a
   // seed a few centimetres or degrees off (at 1 m and 640x480, 1 degree ~ 9 px).
   int seedSearchAt320x240 = 30;
+  // Frame-side sub-pixel alignment (PatchAligner): each match's warped reference window is
+  // aligned to the frame by Lucas-Kanade, so the measurement is where the reference's measured
+  // point lies rather than the independently detected frame corner. Measured on the real desk
+  // clip (README "Frame-side alignment"): no gain in accuracy there, so it is off by default.
+  bool alignFrameSide = false;
+  int alignHalfWindow = 7;  // the alignment's windows are (2n+1)^2 pixels
 
   template <class Self, class Field>  // its keys, in order: ParamFields.hpp
   static void fields(Self& self, const Field& field);

@@ -73,8 +73,8 @@ PoseEstimate RegularizedPoseEstimator::solve(const PoseMeasurements& m, const Ve
       problem.AddResidualBlock(
           EpipolarDistanceCost::create(K_, bToA, e.pRef, e.pK, e.sigma * symmetricPair), loss(), x);
     for (const ThreeViewMatch& t : m.threeView)
-      problem.AddResidualBlock(ThreeViewReprojectionCost::create(K_, t.pointA, t.pK, t.sigma),
-                               loss(), x);
+      problem.AddResidualBlock(
+          ThreeViewReprojectionCost::create(K_, t.pointA, t.pK, t.whiteningOrScalar()), loss(), x);
   } else {
     // Plain least squares: one block per term (identical residuals, far less solver overhead).
     auto batch = [&](const std::vector<EpipolarMatch>& ms) {
@@ -91,7 +91,8 @@ PoseEstimate RegularizedPoseEstimator::solve(const PoseMeasurements& m, const Ve
                                x);
     if (!m.threeView.empty()) {
       std::vector<ThreeViewReprojectionBatchCost::Match> tv;
-      for (const ThreeViewMatch& t : m.threeView) tv.push_back({t.pointA, t.pK, 1.0 / t.sigma});
+      for (const ThreeViewMatch& t : m.threeView)
+        tv.push_back({t.pointA, t.pK, t.whiteningOrScalar()});
       problem.AddResidualBlock(ThreeViewReprojectionBatchCost::create(K_, std::move(tv)), nullptr,
                                x);
     }

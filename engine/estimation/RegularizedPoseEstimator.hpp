@@ -22,7 +22,14 @@ struct EpipolarMatch {
 struct ThreeViewMatch {
   Eigen::Vector3d pointA;  // reference 3D point in camera A's frame
   Eigen::Vector2d pK;      // undistorted pixel in the current frame
-  double sigma = 1.0;
+  double sigma = 1.0;      // standard deviation of pK (pixels)
+  // The residual's whitening W (W^T W = its inverse covariance) when the point's own uncertainty
+  // counts too (its triangulation from two references: the covariance sigma^2 I + J Sigma_P
+  // J^T); none: 1 / sigma.
+  std::optional<Eigen::Matrix2d> whitening{};
+  Eigen::Matrix2d whiteningOrScalar() const {
+    return whitening ? *whitening : Eigen::Matrix2d(Eigen::Matrix2d::Identity() / sigma);
+  }
 };
 
 struct PoseMeasurements {

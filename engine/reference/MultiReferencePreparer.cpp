@@ -89,7 +89,7 @@ MultiPreparation MultiReferencePreparer::prepare(const std::vector<ReferenceImag
     poses.push_back(pose.worldToCamera);
     report.markerRmsPx.push_back(pose.reprojectionRmsPx);
   }
-  return build(images, poses, "marker " + marker.toString(), report, progress);
+  return build(images, poses, "marker " + marker.toString(), report, progress, false);
 }
 
 MultiPreparation MultiReferencePreparer::prepare(const std::vector<ReferenceImage>& images,
@@ -102,14 +102,15 @@ MultiPreparation MultiReferencePreparer::prepare(const std::vector<ReferenceImag
                 std::to_string(images.size()) + " reference images: one per image is needed");
   MultiPreparationReport report;
   report.markerRmsPx.assign(images.size(), std::nullopt);
-  return build(images, poses, poseSource, report, progress);
+  return build(images, poses, poseSource, report, progress, true);
 }
 
 MultiPreparation MultiReferencePreparer::build(const std::vector<ReferenceImage>& images,
                                                const std::vector<RigidPose>& poses,
                                                const std::string& poseSource,
                                                MultiPreparationReport report,
-                                               const PairProgress& progress) const {
+                                               const PairProgress& progress,
+                                               bool posesGiven) const {
   const int n = static_cast<int>(images.size());
   for (int v = 0; v < n; ++v)
     if (!poses[static_cast<std::size_t>(v)].allFinite())
@@ -327,7 +328,7 @@ MultiPreparation MultiReferencePreparer::build(const std::vector<ReferenceImage>
     ss << " do the images overlap, and are the poses (" << poseSource << ") right?";
     throw Error(ss.str());
   }
-  if (params_.refinePoses)
+  if (params_.refines(posesGiven))
     report.poseRefinement = refineReferencePoses(map, params_.poseRefinement);
   if (params_.relocalisation.enabled) buildReferenceKeypoints(map, params_.relocalisation);
   map.check();

@@ -43,7 +43,7 @@ struct MultiPreparationReport {
   int droppedPoints = 0;                  // fewer than two observations left, or behind a camera
   std::vector<int> observationHistogram;  // [k]: points seen by exactly k references
   double multiViewRmsPx = 0.0;  // reprojection RMS of the 3+-view points (their measurements)
-  std::optional<ReferencePoseRefinement> poseRefinement;  // when params.refinePoses
+  std::optional<ReferencePoseRefinement> poseRefinement;  // when params.refines()
 };
 
 struct MultiPreparation {
@@ -73,7 +73,8 @@ class MultiReferencePreparer {
  private:
   MultiPreparation build(const std::vector<ReferenceImage>& images,
                          const std::vector<RigidPose>& poses, const std::string& poseSource,
-                         MultiPreparationReport report, const PairProgress& progress) const;
+                         MultiPreparationReport report, const PairProgress& progress,
+                         bool posesGiven) const;
   void checkImages(const std::vector<ReferenceImage>& images) const;
 
   PinholeCamera camera_;

@@ -90,11 +90,12 @@ void ReferencePreparerParams::write(cv::FileStorage& fs) const {
      << "min_baseline_m" << minBaselineMetres << "min_matches" << minMatches
      << "max_pair_view_angle_deg" << maxPairViewAngleDeg << "min_pair_matches" << minPairMatches
      << "max_track_reprojection_error_px" << maxTrackReprojectionErrorPx << "refine_poses"
-     << (refinePoses ? "true" : "false") << "pose_prior_origin_sd_px" << poseRefinement.originSdPx
-     << "pose_prior_translation_sd_m" << poseRefinement.translationSdMetres
-     << "pose_prior_rotation_sd_deg" << poseRefinement.rotationSdDeg
-     << "pose_refinement_corner_sd_px" << poseRefinement.cornerSdPx << "pose_refinement_iterations"
-     << poseRefinement.maxIterations << "}"
+     << (refinePoses ? "true" : "false") << "refine_given_poses"
+     << (refineGivenPoses ? "true" : "false") << "pose_prior_origin_sd_px"
+     << poseRefinement.originSdPx << "pose_prior_translation_sd_m"
+     << poseRefinement.translationSdMetres << "pose_prior_rotation_sd_deg"
+     << poseRefinement.rotationSdDeg << "pose_refinement_corner_sd_px" << poseRefinement.cornerSdPx
+     << "pose_refinement_iterations" << poseRefinement.maxIterations << "}"
      << "relocalisation"
      << "{";
   relocalisation.write(fs);
@@ -118,6 +119,7 @@ void ReferencePreparerParams::read(const cv::FileNode& root,
   readConfigValue(root["preparation"], "preparation", "max_track_reprojection_error_px",
                   maxTrackReprojectionErrorPx);
   readConfigValue(root["preparation"], "preparation", "refine_poses", refinePoses);
+  readConfigValue(root["preparation"], "preparation", "refine_given_poses", refineGivenPoses);
   readConfigValue(root["preparation"], "preparation", "pose_prior_origin_sd_px",
                   poseRefinement.originSdPx);
   readConfigValue(root["preparation"], "preparation", "pose_prior_translation_sd_m",
@@ -166,20 +168,20 @@ Preparation ReferencePreparer::prepare(const ReferenceImage& a, const ReferenceI
   report.markerRmsA = poseA.reprojectionRmsPx;
   report.markerRmsB = poseB.reprojectionRmsPx;
   return triangulate(a, b, poseA.worldToCamera, poseB.worldToCamera, "marker " + marker.toString(),
-                     report);
+                     report, false);
 }
 
 Preparation ReferencePreparer::prepare(const ReferenceImage& a, const ReferenceImage& b,
                                        const RigidPose& T_A, const RigidPose& T_B,
                                        const std::string& poseSource) const {
   checkImages(a, b);
-  return triangulate(a, b, T_A, T_B, poseSource, PreparationReport{});
+  return triangulate(a, b, T_A, T_B, poseSource, PreparationReport{}, true);
 }
 
 Preparation ReferencePreparer::triangulate(const ReferenceImage& a, const ReferenceImage& b,
                                            const RigidPose& T_A, const RigidPose& T_B,
-                                           const std::string& poseSource,
-                                           PreparationReport report) const {
+                                           const std::string& poseSource, PreparationReport report,
+                                           bool posesGiven) const {
   if (!T_A.allFinite() || !T_B.allFinite())
     throw Error("the reference poses of '" + a.name + "' and '" + b.name + "' are not finite");
   report.baselineMetres = (T_A.cameraCentre() - T_B.cameraCentre()).norm();
@@ -226,7 +228,7 @@ Preparation ReferencePreparer::triangulate(const ReferenceImage& a, const Refere
        << ") right?";
     throw Error(ss.str());
   }
-  if (params_.refinePoses) {
+  if (params_.refines(posesGiven)) {
     // B's pose (A held) and the points from the matches, as the N-reference preparation does.
     MultiReferenceMap multi = MultiReferenceMap::fromPair(map);
     report.poseRefinement = refineReferencePoses(multi, params_.poseRefinement);

@@ -60,6 +60,15 @@ struct ReferencePreparerParams {
   // simulator pair, B 0.3 deg off, cube error 0.65 -> 0.12 px; exact poses: within 0.005 px of
   // the mean and 0.02 px of the p95, depth RMS 2.93 -> 2.91 mm.
   bool refinePoses = true;
+  // ... and the same for poses given by the caller (`prepare --poses`: motion capture, a
+  // fiducial's track, a dataset's ground truth), off by default: such poses are usually good to
+  // their stated accuracy and the adjustment moved them by more (real desk clip, references 0 and
+  // 40: reference 1 moved 0.80 mm and 0.128 deg, and the cube error rose 0.50 -> 0.53 px; the
+  // issue's held-out clips: 0.385 -> 0.538, 0.196 -> 0.332, 0.867 -> 0.924 px).
+  bool refineGivenPoses = false;
+  // Whether the preparation's poses are to be refined: refinePoses for marker poses,
+  // refineGivenPoses for given ones.
+  bool refines(bool posesGiven) const { return posesGiven ? refineGivenPoses : refinePoses; }
   ReferencePoseRefinerParams poseRefinement;
   // The keypoint layer an N-reference map carries for relocalisation (buildReferenceKeypoints;
   // section `relocalisation`, as in the tracking parameters, whose keypoints must be the same
@@ -96,7 +105,7 @@ struct PreparationReport {
   double baselineMetres = 0.0;                   // distance between the two camera centres
   EpipolarMatchStats matching;
   int occupiedGridCells = 0;  // cells of a 4x3 grid over image A holding a kept match
-  std::optional<ReferencePoseRefinement> poseRefinement;  // when params.refinePoses (B refined)
+  std::optional<ReferencePoseRefinement> poseRefinement;  // when params.refines() (B refined)
 };
 
 struct Preparation {
@@ -120,7 +129,7 @@ class ReferencePreparer {
  private:
   Preparation triangulate(const ReferenceImage& a, const ReferenceImage& b, const RigidPose& T_A,
                           const RigidPose& T_B, const std::string& poseSource,
-                          PreparationReport report) const;
+                          PreparationReport report, bool posesGiven) const;
   void checkImages(const ReferenceImage& a, const ReferenceImage& b) const;
 
   PinholeCamera camera_;

@@ -7,6 +7,7 @@
 
 #include "engine/config/ResolutionScale.hpp"
 #include "engine/core/Error.hpp"
+#include "engine/relocalisation/EpipolarKeypointMatcher.hpp"
 #include "engine/relocalisation/KeypointFeatures.hpp"
 
 namespace reftrack {
@@ -131,10 +132,17 @@ void buildReferenceKeypoints(MultiReferenceMap& map, const RelocalisationParams&
       if (li.empty() || lj.empty()) continue;
       const RigidPose& Ti = map.views[i].T;
       const RigidPose& Tj = map.views[j].T;
-      for (const cv::DMatch& m : matchDescriptors(li.descriptors, lj.descriptors,
-                                                  features.normType(), params.ratio, true)) {
-        const auto a = static_cast<std::size_t>(m.queryIdx),
-                   b = static_cast<std::size_t>(m.trainIdx);
+      // Epipolar-guided (EpipolarKeypointMatcher): the known poses narrow each keypoint's
+      // candidates to those near its line, so repeated texture keeps its matches.
+      const RigidPose Tij = Tj * Ti.inverse();
+      const Eigen::Matrix3d Kinv = K.inverse();
+      const Eigen::Matrix3d F = Kinv.transpose() * skew(Tij.translation()) * Tij.rotation() * Kinv;
+      EpipolarKeypointMatcherParams matching;
+      matching.ratio = params.ratio;
+      for (const auto& [ia, jb] :
+           matchAlongEpipolarLines(F, ideal[i], tol[i], li.descriptors, ideal[j], tol[j],
+                                   lj.descriptors, features.normType(), matching)) {
+        const auto a = static_cast<std::size_t>(ia), b = static_cast<std::size_t>(jb);
         const std::optional<Eigen::Vector3d> X = triangulateKeypointMatch(
             K, Ti, ideal[i][a], tol[i][a], Tj, ideal[j][b], tol[j][b], params.minParallaxDeg);
         if (!X) continue;

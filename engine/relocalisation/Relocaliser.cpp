@@ -12,7 +12,7 @@
 #include "engine/core/Error.hpp"
 #include "engine/core/ThreadCpuClock.hpp"
 #include "engine/relocalisation/KeypointFeatures.hpp"
-#include "engine/tracking/CornerGrid.hpp"
+#include "engine/features/CornerGrid.hpp"
 
 namespace reftrack {
 
@@ -559,9 +559,13 @@ RelocalisationAttempt Relocaliser::Impl::locateWith(const cv::Mat& frame,
     ++perReference[static_cast<std::size_t>(matchReference[u])];
     sum2 += errors[u] * errors[u];
   }
+  // poseSpread() marks a pose its inliers cannot pin down (rank-deficient, no depth) with 1e9.
   char spreadText[96];
-  std::snprintf(spreadText, sizeof spreadText, ", pose sigma %.2f deg, %.2f%% of the depth",
-                support.spread.rotationDeg, 100.0 * support.spread.positionOverDepth);
+  if (support.spread.rotationDeg >= 1e8 || support.spread.positionOverDepth >= 1e8)
+    std::snprintf(spreadText, sizeof spreadText, ", pose not determined by its inliers");
+  else
+    std::snprintf(spreadText, sizeof spreadText, ", pose sigma %.2f deg, %.2f%% of the depth",
+                  support.spread.rotationDeg, 100.0 * support.spread.positionOverDepth);
   const std::string supportText =
       std::to_string(n) + " inliers (" + std::to_string(firstInliers) + " of " +
       std::to_string(matches) + " matches before guided matching), " +

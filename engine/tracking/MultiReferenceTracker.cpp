@@ -4,6 +4,8 @@
 #include <chrono>
 #include <cstdint>
 #include <optional>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "engine/core/Error.hpp"
@@ -77,6 +79,8 @@ struct MultiReferenceTracker::Impl {
   // Built when relocalisation is enabled and the map has a keypoint layer; else the paper's start
   // near a reference is the only way in.
   std::unique_ptr<Relocaliser> relocaliser;
+  std::string relocalisationOff;      // why there is no relocaliser (empty: there is one)
+  bool noticePending = false;         // relocalisationOff not yet reported with a frame
   int framesSinceRelocalisation = 0;  // lost frames since the last attempt
 
   Impl(MultiReferenceMap m, const TrackerParams& p, PoseTrackerLimits l)
@@ -96,10 +100,20 @@ struct MultiReferenceTracker::Impl {
 
   void buildRelocaliser() {
     relocaliser.reset();
-    const bool layer = std::any_of(map.views.begin(), map.views.end(),
-                                   [](const ReferenceView& v) { return !v.keypoints.empty(); });
-    if (params.relocalisation.enabled && layer)
-      relocaliser = std::make_unique<Relocaliser>(map, params.relocalisation);
+    relocalisationOff.clear();
+    if (!params.relocalisation.enabled) {
+      relocalisationOff = "relocalisation is off (relocalisation.enabled: false)";
+    } else {
+      // A map without a usable keypoint layer (none, too few 3D points, another detector) is
+      // tracked all the same: starts near a reference only, said once (noticePending).
+      try {
+        relocaliser = std::make_unique<Relocaliser>(map, params.relocalisation);
+      } catch (const Error& e) {
+        relocalisationOff = std::string("tracking without relocalisation: ") + e.what() +
+                            "; the tracker starts only near a reference";
+      }
+    }
+    noticePending = relocaliser == nullptr && params.relocalisation.enabled;
     framesSinceRelocalisation = params.relocalisation.attemptEveryFrames;  // due at once
   }
 
@@ -163,6 +177,10 @@ struct MultiReferenceTracker::Impl {
   MultiReferenceResult track(const cv::Mat& frame, FrameAttempts& attempts, ReferencePair& used);
   PoseTrackingResult recover(const cv::Mat& frame, FrameAttempts& attempts, ReferencePair& used,
                              RelocalisationReport& relocalisation);
+  PoseTrackingResult startNearReference(const cv::Mat& frame, ReferencePair& used);
+  PoseTrackingResult relocalise(const cv::Mat& frame, ReferencePair& used,
+                                RelocalisationReport& relocalisation);
+  bool verified(PoseTrackingResult& r) const;
 };
 
 MultiReferenceResult MultiReferenceTracker::Impl::process(const cv::Mat& frame) {
@@ -191,6 +209,7 @@ MultiReferenceResult MultiReferenceTracker::Impl::process(const cv::Mat& frame) 
   }
   out.referenceA = used.a;
   out.referenceB = used.b;
+  if (std::exchange(noticePending, false)) out.notice = relocalisationOff;
   if (!attempts.earlierMessages.empty() && out.tracking.state != TrackingState::Tracking)
     out.tracking.message = attempts.earlierMessages + "; " + out.tracking.message;
   out.tracking.timings.insert(out.tracking.timings.begin(), attempts.earlier.begin(),
@@ -229,10 +248,13 @@ MultiReferenceResult MultiReferenceTracker::Impl::track(const cv::Mat& frame,
 }
 
 // Not tracking: (1) shortly after a loss, the last pose seeds the pair in use (a black or blurred
-// frame: the camera has not gone far); (2) every relocalisation.attempt_every_frames-th frame,
-// the Relocaliser's candidate seeds the pair best placed for it, which verifies it on the same
-// frame; (3) on frames without an attempt, the paper's start near a reference, one
-// initialisation pair per frame in turn, the pair last in use first.
+// frame: the camera has not gone far); (2) the paper's start near a reference, one initialisation
+// pair per frame in turn (a few milliseconds); (3) when that fails and an attempt is due
+// (relocalisation.attempt_every_frames), the Relocaliser's candidate seeds the pair best placed
+// for it, which verifies it on the same frame. So a clip that starts at a reference gets its pose
+// on the first frame, and one that starts anywhere else on the first frame the relocaliser can
+// place (the shared desk clip: with the relocaliser on every frame and no start near a
+// reference, 0 of 400 frames were tracked).
 PoseTrackingResult MultiReferenceTracker::Impl::recover(const cv::Mat& frame,
                                                         FrameAttempts& attempts,
                                                         ReferencePair& used,
@@ -249,49 +271,22 @@ PoseTrackingResult MultiReferenceTracker::Impl::recover(const cv::Mat& frame,
     attempts.failed("re-seed", r);
     t.reset();
   }
-  if (relocaliser && ++framesSinceRelocalisation >= params.relocalisation.attemptEveryFrames) {
-    framesSinceRelocalisation = 0;
-    ++relocalisationAttempts;
-    const Clock::time_point start = Clock::now();
-    const double cpuStart = threadCpuMs();
-    const RelocalisationAttempt attempt = relocaliser->locate(frame);
-    relocalisation.attempted = true;
-    relocalisation.locateMs = attempt.ms;
-    relocalisation.locateCpuMs = attempt.cpuMs;
-    relocalisation.message = attempt.message;
-    if (attempt.candidate) {
-      relocalisation.inliers = attempt.candidate->inliers;
-      const ReferencePair pair = selector.best(attempt.candidate->worldToCamera);
-      PoseTracker& t = trackerFor(pair);
-      t.seed(attempt.candidate->worldToCamera);
-      PoseTrackingResult r = t.process(frame);
-      used = pair;
-      relocalisation.ms = msSince(start);
-      relocalisation.cpuMs = threadCpuMs() - cpuStart;
-      if (r.state == TrackingState::Tracking) {
-        relocalisation.succeeded = true;
-        relocalisation.message +=
-            "; verified by references " + std::to_string(pair.a) + "+" + std::to_string(pair.b);
-        r.message = "relocalised";
-        r.timings.insert(r.timings.begin(), {"relocalise", attempt.ms});
-        return r;
-      }
-      relocalisation.message += "; not verified: " + r.message;
-      t.reset();
-      r.timings.insert(r.timings.begin(), {"relocalise", attempt.ms});
-      r.message = "relocalisation not verified: " + r.message;
-      return r;
-    }
-    relocalisation.ms = msSince(start);
-    relocalisation.cpuMs = threadCpuMs() - cpuStart;
-    PoseTrackingResult r;
-    r.state = lastPose ? TrackingState::Lost : TrackingState::Initialising;
-    r.message = "relocalisation: " + attempt.message;
-    r.timings.push_back({"relocalise", attempt.ms});
-    return r;
-  }
-  // The pair last in use on even attempts, the others in turn on odd ones (only the turn moves
-  // on with the frames: each pair's tracker also cycles through its scale hypotheses).
+  PoseTrackingResult start = startNearReference(frame, used);
+  if (start.state == TrackingState::Tracking) return start;
+  const bool due =
+      relocaliser && ++framesSinceRelocalisation >= params.relocalisation.attemptEveryFrames;
+  if (!due) return start;
+  attempts.failed("start near references " + std::to_string(used.a) + "+" + std::to_string(used.b),
+                  start);
+  framesSinceRelocalisation = 0;
+  return relocalise(frame, used, relocalisation);
+}
+
+// The paper's start (Sec. 6.2): the pair last in use on even attempts, the others in turn on odd
+// ones (only the turn moves on with the frames: each pair's tracker also cycles through its
+// scale hypotheses).
+PoseTrackingResult MultiReferenceTracker::Impl::startNearReference(const cv::Mat& frame,
+                                                                   ReferencePair& used) {
   ReferencePair pair = initialisationPairs[nextInitialisationPair % initialisationPairs.size()];
   if (active.valid() && framesSinceTracked % 2 == 0)
     pair = active;
@@ -301,7 +296,84 @@ PoseTrackingResult MultiReferenceTracker::Impl::recover(const cv::Mat& frame,
   if (t.state() == TrackingState::Tracking) t.reset();
   PoseTrackingResult r = t.process(frame);
   used = pair;
-  if (r.state != TrackingState::Tracking) t.reset();
+  if (r.state != TrackingState::Tracking) {
+    t.reset();
+    return r;
+  }
+  // Confirmation on the same frame: the start's pose seeds the wide-baseline matching of every
+  // map point (as a relocalisation candidate does), which finds far more matches than the
+  // narrow-baseline start, refines the pose with them and must be verified.
+  const double startMs = r.totalMs;
+  t.seed(*r.worldToCamera);
+  PoseTrackingResult confirmed = t.process(frame);
+  confirmed.timings.insert(confirmed.timings.begin(), {"start", startMs});
+  if (!verified(confirmed)) {
+    t.reset();
+    confirmed.message = "start near references not confirmed: " + confirmed.message;
+    return confirmed;
+  }
+  confirmed.message = "initialised from the reference images";
+  return confirmed;
+}
+
+// A start (near a reference, or from a relocalisation candidate) confirmed by its seeded pass is
+// reported only with enough matches to distinctive reference corners (DistinctiveCorners): on
+// repeated texture a pose a whole period off keeps the texture's matches and loses the rest.
+// Otherwise r is made Lost with the reason.
+bool MultiReferenceTracker::Impl::verified(PoseTrackingResult& r) const {
+  if (r.state != TrackingState::Tracking) return false;
+  const int needed = params.relocalisation.minDistinctiveInliers;
+  if (r.distinctiveInliers >= needed) return true;
+  r.state = TrackingState::Lost;
+  r.worldToCamera.reset();
+  r.T_Ak.reset();
+  r.message = "not verified: " + std::to_string(r.distinctiveInliers) +
+              " inlier matches to distinctive reference corners, " + std::to_string(needed) +
+              " needed (relocalisation.min_distinctive_inliers): on repeated texture the pose "
+              "could be a whole period off";
+  return false;
+}
+
+// The Relocaliser's candidate, refined and verified by the pair best placed for it.
+PoseTrackingResult MultiReferenceTracker::Impl::relocalise(const cv::Mat& frame,
+                                                           ReferencePair& used,
+                                                           RelocalisationReport& relocalisation) {
+  ++relocalisationAttempts;
+  const Clock::time_point start = Clock::now();
+  const double cpuStart = threadCpuMs();
+  const RelocalisationAttempt attempt = relocaliser->locate(frame);
+  relocalisation.attempted = true;
+  relocalisation.locateMs = attempt.ms;
+  relocalisation.locateCpuMs = attempt.cpuMs;
+  relocalisation.message = attempt.message;
+  if (attempt.candidate) {
+    relocalisation.inliers = attempt.candidate->inliers;
+    const ReferencePair pair = selector.best(attempt.candidate->worldToCamera);
+    PoseTracker& t = trackerFor(pair);
+    t.seed(attempt.candidate->worldToCamera);
+    PoseTrackingResult r = t.process(frame);
+    used = pair;
+    relocalisation.ms = msSince(start);
+    relocalisation.cpuMs = threadCpuMs() - cpuStart;
+    r.timings.insert(r.timings.begin(), {"relocalise", attempt.ms});
+    if (verified(r)) {
+      relocalisation.succeeded = true;
+      relocalisation.message +=
+          "; verified by references " + std::to_string(pair.a) + "+" + std::to_string(pair.b);
+      r.message = "relocalised";
+      return r;
+    }
+    relocalisation.message += "; not verified: " + r.message;
+    t.reset();
+    r.message = "relocalisation not verified: " + r.message;
+    return r;
+  }
+  relocalisation.ms = msSince(start);
+  relocalisation.cpuMs = threadCpuMs() - cpuStart;
+  PoseTrackingResult r;
+  r.state = lastPose ? TrackingState::Lost : TrackingState::Initialising;
+  r.message = "relocalisation: " + attempt.message;
+  r.timings.push_back({"relocalise", attempt.ms});
   return r;
 }
 
@@ -371,5 +443,8 @@ std::pair<int, int> MultiReferenceTracker::referencesInUse() const {
   return {impl_->active.a, impl_->active.b};
 }
 int MultiReferenceTracker::relocalisationAttempts() const { return impl_->relocalisationAttempts; }
+const std::string& MultiReferenceTracker::relocalisationUnavailable() const {
+  return impl_->relocalisationOff;
+}
 
 }  // namespace reftrack

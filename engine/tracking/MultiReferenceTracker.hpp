@@ -5,12 +5,13 @@
 // tracked frame does not grow with N; switching pairs hands the current pose over to the new
 // pair's tracker (PoseTracker::seed), and when that fails the pair in use goes on. Pair trackers
 // are made on first use and references.cached_trackers of them are kept. Not tracking: within
-// references.reseed_frames of a loss the last pose seeds the pair in use; every
+// references.reseed_frames of a loss the last pose seeds the pair in use; then every frame tries
+// the paper's start near a reference (one pair per frame in turn), and when that fails, every
 // relocalisation.attempt_every_frames-th frame the Relocaliser (when enabled and the map has a
-// keypoint layer) proposes a pose from anywhere in the mapped volume, which the pair best placed
-// for it refines and verifies with the warped correlation on the same frame before it is
-// reported; other frames try the paper's start near a reference, one pair per frame in turn.
+// usable keypoint layer; else said once in `notice`) proposes a pose from anywhere in the mapped
+// volume, which the pair best placed for it refines and verifies on the same frame.
 #include <memory>
+#include <string>
 #include <utility>
 
 #include "engine/config/TrackerParams.hpp"
@@ -35,6 +36,9 @@ struct MultiReferenceResult {
   PoseTrackingResult tracking;           // T_Ak etc. relative to reference `referenceA`
   int referenceA = -1, referenceB = -1;  // the pair whose tracker gave `tracking` (-1: none)
   RelocalisationReport relocalisation;
+  // Said once, with the first frame after construction or a parameter change: why the tracker
+  // runs without relocalisation when it was asked for (a map with a thin or no keypoint layer).
+  std::string notice;
 };
 
 class MultiReferenceTracker {
@@ -54,6 +58,8 @@ class MultiReferenceTracker {
   TrackingState state() const;
   std::pair<int, int> referencesInUse() const;  // (-1, -1) before the first pose
   int relocalisationAttempts() const;           // since construction
+  // Why relocalisation is unavailable (no usable keypoint layer, or turned off); empty when on.
+  const std::string& relocalisationUnavailable() const;
 
  private:
   struct Impl;

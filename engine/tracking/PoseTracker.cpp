@@ -1,5 +1,7 @@
 #include "engine/tracking/PoseTracker.hpp"
 
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -15,7 +17,9 @@
 #include "engine/estimation/TemporalRegularizer.hpp"
 #include "engine/features/CornerDetector.hpp"
 #include "engine/geometry/FundamentalMatrix.hpp"
+#include "engine/matching/DistinctiveCorners.hpp"
 #include "engine/matching/NarrowBaselineMatcher.hpp"
+#include "engine/matching/PatchAligner.hpp"
 #include "engine/tracking/PoseSupport.hpp"
 #include "engine/tracking/WideBaselineMatcher.hpp"
 
@@ -63,6 +67,7 @@ struct PreparedReference {
   // correlation peak its 3D point was triangulated from, or the corner itself (no point, no peak).
   // The epipolar terms use it, so that they measure the same scene point as the three-view terms.
   std::vector<Eigen::Vector2d> measured;
+  std::vector<cv::Point2f> measuredPixels;  // the same, with lens distortion (for alignment)
   std::vector<float> contrast;
   std::vector<int> mapMatch;  // corner -> index into map.matches, or -1
   std::vector<Corner> asCorners;
@@ -94,8 +99,11 @@ PreparedReference prepare(const cv::Mat& image, const std::vector<ReferenceCorne
     }
   }
   const std::vector<cv::Point2f> undistortedPeaks = camera.undistortPixels(peaks);
-  for (std::size_t i = 0; i < peakCorners.size(); ++i)
+  r.measuredPixels = pixels;
+  for (std::size_t i = 0; i < peakCorners.size(); ++i) {
     r.measured[peakCorners[i]] = toEigen(undistortedPeaks[i]);
+    r.measuredPixels[peakCorners[i]] = peaks[i];
+  }
   r.gray = toGray8(image);
   // Corners with a 3D point are tried first: they carry the three-view terms.
   std::vector<char> hasPoint(corners.size(), 0);
@@ -172,10 +180,67 @@ struct PoseTracker::Impl {
     limits.check();
     refA = prepare(map.imageA, map.cornersA, map.camera, map.matches, true);
     refB = prepare(map.imageB, map.cornersB, map.camera, map.matches, false);
+    computeDistinctiveCorners();
+    computePointCovariances();
     estimator = std::make_unique<RegularizedPoseEstimator>(map.camera.K(), map.T_AB());
     applyCornerParams();
     applyPoseParams();
     shutter = std::make_shared<RollingShutterEstimator>(params.pose.rollingShutterReadout);
+  }
+
+  std::vector<char> distinctiveA, distinctiveB;  // per reference corner (DistinctiveCorners)
+  // Repeated texture within reach of a start's search (the narrow-baseline window, the seed
+  // search) can fool a start by a whole period; a look-alike correlating above the matcher's
+  // acceptance there makes a corner repeated.
+  void computeDistinctiveCorners() {
+    const double radius =
+        1.5 * resolutionScale(map.camera.imageSize()) *
+        std::max({params.correlation.searchHalfWidthPx, params.correlation.searchHalfHeightPx,
+                  static_cast<double>(params.wideBaseline.seedSearchAt320x240)});
+    const int half = params.correlation.halfWindow;
+    const double twin = params.correlation.minScore;
+    distinctiveA = distinctiveCorners(refA.gray, refA.matchable.corners, half, radius, twin);
+    distinctiveB = distinctiveCorners(refB.gray, refB.matchable.corners, half, radius, twin);
+  }
+
+  // Each map point's covariance (camera A's frame) from its two-reference triangulation: the
+  // information of A's and B's measurements, each with the variance the corner-variance model
+  // gives its corner (the frame's corners are weighted by the same model), times
+  // pose.map_point_sd_scale squared.
+  std::vector<Eigen::Matrix3d> pointCovariance;
+  static Eigen::Matrix<double, 2, 3> projectionJacobian(const Eigen::Matrix3d& K,
+                                                        const Eigen::Vector3d& X) {
+    Eigen::Matrix<double, 2, 3> J;
+    const double iz = 1.0 / X.z();
+    J << K(0, 0) * iz, K(0, 1) * iz, -(K(0, 0) * X.x() + K(0, 1) * X.y()) * iz * iz, 0.0,
+        K(1, 1) * iz, -K(1, 1) * X.y() * iz * iz;
+    return J;
+  }
+  void computePointCovariances() {
+    const Eigen::Matrix3d& K = map.camera.K();
+    const RigidPose TAB = map.T_AB();
+    pointCovariance.clear();
+    for (const ReferenceMatch& m : map.matches) {
+      const Eigen::Matrix<double, 2, 3> JA = projectionJacobian(K, m.pointA);
+      const Eigen::Matrix<double, 2, 3> JB = projectionJacobian(K, TAB * m.pointA) * TAB.rotation();
+      const double vA = varianceModel.variance(refA.contrast[static_cast<std::size_t>(m.cornerA)]);
+      const double vB = varianceModel.variance(refB.contrast[static_cast<std::size_t>(m.cornerB)]);
+      const Eigen::Matrix3d information = JA.transpose() * JA / vA + JB.transpose() * JB / vB;
+      const double scale = params.pose.mapPointSdScale;
+      pointCovariance.push_back(information.inverse() * (scale * scale));
+    }
+  }
+
+  // The whitening of a three-view residual: its covariance is the frame pixel's sigma^2 I plus the
+  // point's covariance seen from the frame (J Sigma_P J^T, J at the pose T_Ak).
+  Eigen::Matrix2d threeViewWhitening(const RigidPose& TAk, int mapMatch, double sigma) const {
+    const Eigen::Vector3d X = TAk * map.matches[static_cast<std::size_t>(mapMatch)].pointA;
+    const Eigen::Matrix<double, 2, 3> J = projectionJacobian(map.camera.K(), X) * TAk.rotation();
+    const Eigen::Matrix2d C =
+        sigma * sigma * Eigen::Matrix2d::Identity() +
+        J * pointCovariance[static_cast<std::size_t>(mapMatch)] * J.transpose();
+    const Eigen::Matrix2d L = C.llt().matrixL();
+    return L.inverse();
   }
 
   double readout() const {
@@ -246,233 +311,288 @@ struct PoseTracker::Impl {
     }
   }
 
+  // The stages of process() and what passes between them.
+  struct FrameCorners {
+    std::vector<Corner> corners;
+    std::vector<cv::Point2f> pixels;
+    std::vector<cv::Point2f> f2fPoints;  // the strongest, for the next frame-to-frame matching
+    NccPatches f2fWindows;
+  };
+  struct FrameMatches {
+    std::vector<WideBaselineMatch> toA, toB;  // frame corner -> reference corner
+    cv::Matx33d H = cv::Matx33d::eye();       // V_k -> V_{k-1} (identity unless measured)
+    bool haveFrameToFrame = false;
+  };
+  struct Measurements {
+    std::vector<Eigen::Vector2d> undistorted;      // corrected, undistorted frame pixels
+    std::vector<std::size_t> toA, toB;             // per match: its index in `undistorted`
+    std::vector<Eigen::Vector2d> shiftPerReadout;  // per measurement (readout estimate only)
+    double readout = 0.0;                          // the rolling-shutter readout applied
+  };
+  struct Pair3D {
+    int frameCorner, mapMatch;
+    std::size_t measurement;  // index into Measurements::undistorted
+  };
+  struct Inliers {
+    Vector6d xLin = Vector6d::Zero();  // the robust linear pose (PnP-RANSAC, refined)
+    PoseMeasurements measurements;     // the gated terms for the estimator
+    std::vector<char> inlierA, inlierB;
+    std::vector<std::size_t> threeViewMeasurement;  // per three-view term: its measurement
+    int distinctive = 0;  // gated matches to distinctive reference corners
+  };
+  FrameCorners detectCorners(const cv::Mat& gray);
+  void matchFrameToFrame(const FrameCorners& c, double scale, FrameMatches& m);
+  void matchWideBaseline(const cv::Mat& gray, const FrameCorners& c, bool seeded, FrameMatches& m,
+                         PoseTrackingResult& r);
+  void matchInitial(const cv::Mat& gray, const FrameCorners& c, FrameMatches& m);
+  void completeThroughMap(std::size_t frameCorners, FrameMatches& m) const;
+  Measurements measure(const cv::Mat& gray, const FrameCorners& c, const FrameMatches& m);
+  std::vector<Pair3D> threeViewPairs(const FrameMatches& m, const Measurements& meas) const;
+  std::optional<Inliers> rejectOutliers(const FrameCorners& c, const FrameMatches& m,
+                                        const Measurements& meas, const std::vector<Pair3D>& pairs,
+                                        double gate, PoseTrackingResult& r);
+  bool checkSupport(const PoseEstimate& est, const PoseMeasurements& meas, double scale,
+                    PoseTrackingResult& r);
+  void keepInliers(const FrameCorners& c, const FrameMatches& m, const Inliers& in,
+                   PoseTrackingResult& r);
   PoseTrackingResult process(const cv::Mat& frame);
 };
 
-PoseTrackingResult PoseTracker::Impl::process(const cv::Mat& frame) {
-  const Clock::time_point start = Clock::now();
-  PoseTrackingResult r;
-  r.state = state;
-  if (frame.empty()) throw Error("PoseTracker: empty frame");
-  if (frame.size() != map.camera.imageSize())
-    throw Error("PoseTracker: frame size " + std::to_string(frame.cols) + "x" +
-                std::to_string(frame.rows) + " differs from the map's camera " +
-                std::to_string(map.camera.imageSize().width) + "x" +
-                std::to_string(map.camera.imageSize().height));
-  const cv::Mat gray = toGray8(frame);
-  const double scale = resolutionScale(gray.size());
-  const double gate = limits.gatePx * scale;
+// ---- The per-frame stages. Each takes what it needs and fills its own output; process() reads
+// top to bottom as the paper's pipeline.
 
-  Clock::time_point t = Clock::now();
-  const std::vector<Corner> corners = detector->detect(gray);
-  const std::vector<cv::Point2f> pixels = positionsOf(corners);
-  r.corners = static_cast<int>(corners.size());
-  r.frameCorners = pixels;
-  r.timings.push_back({"corners", msSince(t)});
-  // A seeded frame is matched like a tracked one, from the seed's projections (seedsFromPose).
-  const std::optional<RigidPose> seeded = std::exchange(seedPose, std::nullopt);
-  const bool wasTracking = seeded || (state == TrackingState::Tracking && !prevA.empty());
-  // Frame-to-frame matching only predicts W = L H (Eq. 18): the strongest corners suffice, and
-  // their windows are kept for the next frame.
+// Stage 1, corners: the frame's corners, and the strongest of them (with their NCC windows) for
+// the next frame's frame-to-frame matching.
+PoseTracker::Impl::FrameCorners PoseTracker::Impl::detectCorners(const cv::Mat& gray) {
+  FrameCorners c;
+  c.corners = detector->detect(gray);
+  c.pixels = positionsOf(c.corners);
+  // Frame-to-frame matching only predicts W = L H (Eq. 18): the strongest corners suffice.
   const std::size_t f2fCount = std::min<std::size_t>(
-      pixels.size(),
+      c.pixels.size(),
       static_cast<std::size_t>(params.wideBaseline.frameToFrameCornersFor(gray.size())));
-  std::vector<cv::Point2f> f2fPoints(pixels.begin(), pixels.begin() + static_cast<long>(f2fCount));
-  NccPatches f2fWindows = NccPatches::square(gray, f2fPoints, params.correlation.halfWindow);
-  auto finish = [&](PoseTrackingResult& res) {
-    res.totalMs = msSince(start);
-    prevF2F = std::move(f2fPoints);
-    prevF2FWindows = std::move(f2fWindows);
-    return res;
-  };
-  if (r.corners < limits.minCorners) {
-    lose(r, "too few corners (" + std::to_string(r.corners) +
-                "): textureless, black or blurred frame");
-    return finish(r);
-  }
-  std::vector<Eigen::Vector2d> undist;
-  // The frame-to-frame homography V_k -> V_{k-1} of a tracked frame (identity otherwise).
-  cv::Matx33d H = cv::Matx33d::eye();
-  bool haveFrameToFrame = false;
+  c.f2fPoints.assign(c.pixels.begin(), c.pixels.begin() + static_cast<long>(f2fCount));
+  c.f2fWindows = NccPatches::square(gray, c.f2fPoints, params.correlation.halfWindow);
+  return c;
+}
 
-  // ---- Matches to V_A and V_B (frame corner index -> reference corner index).
-  std::vector<WideBaselineMatch> mA, mB;
+// Stage 2, frame to frame (tracked frames): the homography V_k -> V_{k-1} from narrow-baseline
+// matches of the strongest corners. Only a prediction for W = L H (Eq. 18), so OpenCV's RANSAC
+// homography suffices; a failure leaves the identity.
+void PoseTracker::Impl::matchFrameToFrame(const FrameCorners& c, double scale, FrameMatches& m) {
   const NarrowBaselineMatcher narrow(params.correlation);
-  if (wasTracking) {
-    t = Clock::now();
-    // Frame-to-frame homography V_k -> V_{k-1}: only a prediction for W = L H (Eq. 18), so
-    // OpenCV's RANSAC homography suffices here; a failure falls back to the identity. A seeded
-    // frame's "previous frame" is the seed's projection of the map: H is the identity.
-    WideBaselineParams wideParams = params.wideBaseline;
-    if (seeded) {
-      seedsFromPose(*seeded, gray.size());
-      wideParams.dx = wideParams.dy = wideParams.seedSearchAt320x240;
-    }
-    const std::vector<CornerMatch> f2f =
-        seeded ? std::vector<CornerMatch>{}
-               : narrow.match(f2fPoints, f2fWindows, prevF2F, prevF2FWindows,
-                              params.correlation.searchHalfWidthPx * scale,
-                              params.correlation.searchHalfHeightPx * scale);
-    if (f2f.size() >= 8) {
-      std::vector<cv::Point2f> a, b;
-      for (const CornerMatch& m : f2f) {
-        a.push_back(f2fPoints[static_cast<std::size_t>(m.first)]);
-        b.push_back(prevF2F[static_cast<std::size_t>(m.second)]);
-      }
-      const cv::Mat Hm = cv::findHomography(a, b, cv::RANSAC, 3.0 * scale);
-      if (!Hm.empty()) {
-        H = cv::Matx33d(Hm);
-        haveFrameToFrame = true;
-      }
-    }
-    r.timings.push_back({seeded ? "seed" : "frame-to-frame", msSince(t)});
-    t = Clock::now();
-    // The frame's correlation windows, sampled once for both references.
-    const MatchableFrame matchable =
-        MatchableFrame::build(gray, pixels, params.wideBaseline.halfWindow);
-    r.timings.push_back({"frame windows", msSince(t)});
-    const WideBaselineMatcher wide(wideParams);
-    t = Clock::now();
-    mA = wide.match(matchable, H, prevA, refA.matchable);
-    r.timings.push_back({"match A", msSince(t)});
-    t = Clock::now();
-    mB = wide.match(matchable, H, prevB, refB.matchable);
-    r.timings.push_back({"match B", msSince(t)});
-  } else {
-    // Initialisation (paper Sec. 6.2): narrow-baseline matching to V_A; V_B follows through the
-    // stored A<->B matches. A frame near V_B initialises symmetrically.
-    t = Clock::now();
-    std::vector<CornerMatch> nA = narrow.match(gray, corners, refA.gray, refA.asCorners);
-    std::vector<CornerMatch> nB = narrow.match(gray, corners, refB.gray, refB.asCorners);
-    if (nA.size() + nB.size() < static_cast<std::size_t>(4 * limits.minInliers)) {
-      // Paper Sec. 6.2 starts only from a frame near V_A; a frame along the same line of sight
-      // but at another distance starts too once its windows are resampled to the right scale.
-      const double s = kInitScales[nextInitScale++ % std::size(kInitScales)];
-      std::vector<CornerMatch> sA = matchAtScale(narrow, gray, pixels, refA, s);
-      std::vector<CornerMatch> sB = matchAtScale(narrow, gray, pixels, refB, s);
-      if (sA.size() + sB.size() > nA.size() + nB.size()) {
-        nA = std::move(sA);
-        nB = std::move(sB);
-      }
-    }
-    for (const CornerMatch& m : nA) mA.push_back({m.first, m.second, m.score, {}});
-    for (const CornerMatch& m : nB) mB.push_back({m.first, m.second, m.score, {}});
-    r.timings.push_back({"initialise", msSince(t)});
+  const std::vector<CornerMatch> f2f = narrow.match(
+      c.f2fPoints, c.f2fWindows, prevF2F, prevF2FWindows,
+      params.correlation.searchHalfWidthPx * scale, params.correlation.searchHalfHeightPx * scale);
+  if (f2f.size() < 8) return;
+  std::vector<cv::Point2f> a, b;
+  for (const CornerMatch& x : f2f) {
+    a.push_back(c.f2fPoints[static_cast<std::size_t>(x.first)]);
+    b.push_back(prevF2F[static_cast<std::size_t>(x.second)]);
   }
-  // Matches implied through the map's A<->B matches complete the other side.
-  {
-    std::vector<int> frameToB(pixels.size(), -1), frameToA(pixels.size(), -1);
-    for (const WideBaselineMatch& m : mB)
-      frameToB[static_cast<std::size_t>(m.frameCorner)] = m.referenceCorner;
-    for (const WideBaselineMatch& m : mA)
-      frameToA[static_cast<std::size_t>(m.frameCorner)] = m.referenceCorner;
-    std::vector<char> usedB(refB.undistorted.size(), 0), usedA(refA.undistorted.size(), 0);
-    for (const WideBaselineMatch& m : mB) usedB[static_cast<std::size_t>(m.referenceCorner)] = 1;
-    for (const WideBaselineMatch& m : mA) usedA[static_cast<std::size_t>(m.referenceCorner)] = 1;
-    const std::size_t nA0 = mA.size(), nB0 = mB.size();
-    for (std::size_t i = 0; i < nA0; ++i) {
-      const int mm = refA.mapMatch[static_cast<std::size_t>(mA[i].referenceCorner)];
-      if (mm < 0) continue;
-      const int b = map.matches[static_cast<std::size_t>(mm)].cornerB;
-      if (frameToB[static_cast<std::size_t>(mA[i].frameCorner)] < 0 &&
-          !usedB[static_cast<std::size_t>(b)]) {
-        mB.push_back({mA[i].frameCorner, b, mA[i].score, {}});
-        usedB[static_cast<std::size_t>(b)] = 1;
-      }
-    }
-    for (std::size_t i = 0; i < nB0; ++i) {
-      const int mm = refB.mapMatch[static_cast<std::size_t>(mB[i].referenceCorner)];
-      if (mm < 0) continue;
-      const int a = map.matches[static_cast<std::size_t>(mm)].cornerA;
-      if (frameToA[static_cast<std::size_t>(mB[i].frameCorner)] < 0 &&
-          !usedA[static_cast<std::size_t>(a)]) {
-        mA.push_back({mB[i].frameCorner, a, mB[i].score, {}});
-        usedA[static_cast<std::size_t>(a)] = 1;
-      }
-    }
-  }
-  r.matchesA = static_cast<int>(mA.size());
-  r.matchesB = static_cast<int>(mB.size());
-  // Per frame corner, how far its undistorted measurement moves per unit of readout (for the
-  // readout's online estimate; empty when it is off or the frame has no frame-to-frame motion).
-  std::vector<Eigen::Vector2d> shiftPerReadout;
-  const double readoutUsed = readout();
-  r.rollingShutterReadout = readoutUsed;
-  {
-    // Rolling shutter (pose.rolling_shutter_readout): row y was exposed (y - c) / (rows - 1)
-    // readouts after the middle row c; the corner moves back along its image velocity (pixels
-    // per frame interval) by that fraction of it. Matching keeps the observed pixels.
-    const bool estimating = params.pose.estimateRollingShutter && haveFrameToFrame;
-    std::vector<cv::Point2f> measured = pixels, unitShifted;
-    if ((readoutUsed > 0 || estimating) && haveFrameToFrame) {
-      const double middle = 0.5 * (gray.rows - 1);
-      if (estimating) unitShifted = pixels;
-      for (std::size_t i = 0; i < measured.size(); ++i) {
-        cv::Point2f& p = measured[i];
-        const cv::Vec3d q = H * cv::Vec3d(p.x, p.y, 1.0);
-        if (!(std::abs(q[2]) > 1e-12)) continue;
-        const double f = (p.y - middle) / (gray.rows - 1);
-        // The image velocity at the middle row's instant: H gives it half a frame earlier, and
-        // the previous frame's homography one and a half; extrapolated linearly (hand-held motion
-        // accelerates: measured at 1280x720, webcam effects, readout known, cube error mean
-        // 0.353 px with the backward difference alone, 0.267 px extrapolated).
-        double vx = p.x - q[0] / q[2], vy = p.y - q[1] / q[2];
-        if (prevFrameToFrame) {
-          const cv::Vec3d q2 = (*prevFrameToFrame) * q;
-          if (std::abs(q2[2]) > 1e-12) {
-            const double ux = q[0] / q[2] - q2[0] / q2[2], uy = q[1] / q[2] - q2[1] / q2[2];
-            vx = 1.5 * vx - 0.5 * ux;
-            vy = 1.5 * vy - 0.5 * uy;
-          }
-        }
-        const double dx = f * vx, dy = f * vy;
-        if (estimating)
-          unitShifted[i] -= cv::Point2f(static_cast<float>(dx), static_cast<float>(dy));
-        p.x -= static_cast<float>(readoutUsed * dx);
-        p.y -= static_cast<float>(readoutUsed * dy);
-      }
-    }
-    for (const cv::Point2f& p : map.camera.undistortPixels(measured)) undist.push_back(toEigen(p));
-    prevFrameToFrame = haveFrameToFrame ? std::optional<cv::Matx33d>(H) : std::nullopt;
-    if (estimating) {
-      const std::vector<cv::Point2f> raw = map.camera.undistortPixels(pixels);
-      const std::vector<cv::Point2f> moved = map.camera.undistortPixels(unitShifted);
-      for (std::size_t i = 0; i < raw.size(); ++i)
-        shiftPerReadout.push_back(toEigen(raw[i]) - toEigen(moved[i]));
-    }
-  }
+  const cv::Mat Hm = cv::findHomography(a, b, cv::RANSAC, 3.0 * scale);
+  if (Hm.empty()) return;
+  m.H = cv::Matx33d(Hm);
+  m.haveFrameToFrame = true;
+}
 
-  // ---- 3D-2D pairs (map points seen through A or B), PnP-RANSAC, gate.
+// Stage 3a, wide-baseline matching (tracked or seeded frames): the frame's corners to V_A and
+// V_B through W = L H (Eq. 18-19), from the previous frame's matches (or the seed's projections,
+// H = identity, candidates within wide_baseline.seed_search).
+void PoseTracker::Impl::matchWideBaseline(const cv::Mat& gray, const FrameCorners& c, bool seeded,
+                                          FrameMatches& m, PoseTrackingResult& r) {
+  WideBaselineParams wideParams = params.wideBaseline;
+  if (seeded) wideParams.dx = wideParams.dy = wideParams.seedSearchAt320x240;
+  Clock::time_point t = Clock::now();
+  const MatchableFrame matchable =
+      MatchableFrame::build(gray, c.pixels, params.wideBaseline.halfWindow);
+  r.timings.push_back({"frame windows", msSince(t)});
+  const WideBaselineMatcher wide(wideParams);
   t = Clock::now();
-  struct Pair3D {
-    int frameCorner, mapMatch;
-  };
-  std::vector<Pair3D> pairs;
-  {
-    std::vector<char> usedMap(map.matches.size(), 0);
-    auto add = [&](const std::vector<WideBaselineMatch>& ms, const PreparedReference& ref) {
-      for (const WideBaselineMatch& m : ms) {
-        const int mm = ref.mapMatch[static_cast<std::size_t>(m.referenceCorner)];
-        if (mm < 0 || usedMap[static_cast<std::size_t>(mm)]) continue;
-        usedMap[static_cast<std::size_t>(mm)] = 1;
-        pairs.push_back({m.frameCorner, mm});
-      }
-    };
-    add(mA, refA);
-    add(mB, refB);
+  m.toA = wide.match(matchable, m.H, prevA, refA.matchable);
+  r.timings.push_back({"match A", msSince(t)});
+  t = Clock::now();
+  m.toB = wide.match(matchable, m.H, prevB, refB.matchable);
+  r.timings.push_back({"match B", msSince(t)});
+}
+
+// Stage 3b, initialisation (paper Sec. 6.2): narrow-baseline matching to V_A and V_B; when that
+// finds too little, one of a few distance ratios per frame (matchAtScale: a start from farther
+// away or nearer than the reference, along about its line of sight).
+void PoseTracker::Impl::matchInitial(const cv::Mat& gray, const FrameCorners& c, FrameMatches& m) {
+  const NarrowBaselineMatcher narrow(params.correlation);
+  std::vector<CornerMatch> nA = narrow.match(gray, c.corners, refA.gray, refA.asCorners);
+  std::vector<CornerMatch> nB = narrow.match(gray, c.corners, refB.gray, refB.asCorners);
+  double s = 1.0;
+  if (nA.size() + nB.size() < static_cast<std::size_t>(4 * limits.minInliers)) {
+    const double scaleHypothesis = kInitScales[nextInitScale++ % std::size(kInitScales)];
+    std::vector<CornerMatch> sA = matchAtScale(narrow, gray, c.pixels, refA, scaleHypothesis);
+    std::vector<CornerMatch> sB = matchAtScale(narrow, gray, c.pixels, refB, scaleHypothesis);
+    if (sA.size() + sB.size() > nA.size() + nB.size()) {
+      nA = std::move(sA);
+      nB = std::move(sB);
+      s = scaleHypothesis;
+    }
   }
-  r.threeView = static_cast<int>(pairs.size());
+  // The frame windows were compared with the reference's at scale s: frame offsets map to
+  // reference offsets by s I (for the frame-side alignment).
+  const cv::Matx22d J(s, 0, 0, s);
+  for (const CornerMatch& x : nA) m.toA.push_back({x.first, x.second, x.score, {}, J});
+  for (const CornerMatch& x : nB) m.toB.push_back({x.first, x.second, x.score, {}, J});
+}
+
+// Stage 4, matches implied through the map's A<->B matches complete the other side: a frame
+// corner matched to a corner of A with a map point is matched to that point's corner of B too
+// (and vice versa), unless either already has a match there.
+void PoseTracker::Impl::completeThroughMap(std::size_t frameCorners, FrameMatches& m) const {
+  std::vector<int> frameToB(frameCorners, -1), frameToA(frameCorners, -1);
+  for (const WideBaselineMatch& x : m.toB)
+    frameToB[static_cast<std::size_t>(x.frameCorner)] = x.referenceCorner;
+  for (const WideBaselineMatch& x : m.toA)
+    frameToA[static_cast<std::size_t>(x.frameCorner)] = x.referenceCorner;
+  std::vector<char> usedB(refB.undistorted.size(), 0), usedA(refA.undistorted.size(), 0);
+  for (const WideBaselineMatch& x : m.toB) usedB[static_cast<std::size_t>(x.referenceCorner)] = 1;
+  for (const WideBaselineMatch& x : m.toA) usedA[static_cast<std::size_t>(x.referenceCorner)] = 1;
+  const std::size_t nA0 = m.toA.size(), nB0 = m.toB.size();
+  for (std::size_t i = 0; i < nA0; ++i) {
+    const int mm = refA.mapMatch[static_cast<std::size_t>(m.toA[i].referenceCorner)];
+    if (mm < 0) continue;
+    const int b = map.matches[static_cast<std::size_t>(mm)].cornerB;
+    if (frameToB[static_cast<std::size_t>(m.toA[i].frameCorner)] < 0 &&
+        !usedB[static_cast<std::size_t>(b)]) {
+      m.toB.push_back({m.toA[i].frameCorner, b, m.toA[i].score, {}, {}});
+      usedB[static_cast<std::size_t>(b)] = 1;
+    }
+  }
+  for (std::size_t i = 0; i < nB0; ++i) {
+    const int mm = refB.mapMatch[static_cast<std::size_t>(m.toB[i].referenceCorner)];
+    if (mm < 0) continue;
+    const int a = map.matches[static_cast<std::size_t>(mm)].cornerA;
+    if (frameToA[static_cast<std::size_t>(m.toB[i].frameCorner)] < 0 &&
+        !usedA[static_cast<std::size_t>(a)]) {
+      m.toA.push_back({m.toB[i].frameCorner, a, m.toB[i].score, {}, {}});
+      usedA[static_cast<std::size_t>(a)] = 1;
+    }
+  }
+}
+
+// Stage 5, measurements: one frame pixel per match (the frame corner, or where the reference's
+// measured point aligns: wide_baseline.align_frame_side), corrected for the rolling shutter
+// (pose.rolling_shutter_readout, or its online estimate) and undistorted.
+PoseTracker::Impl::Measurements PoseTracker::Impl::measure(const cv::Mat& gray,
+                                                           const FrameCorners& c,
+                                                           const FrameMatches& m) {
+  Measurements out;
+  out.toA.resize(m.toA.size());
+  out.toB.resize(m.toB.size());
+  std::vector<cv::Point2f> pixels;
+  pixels.reserve(m.toA.size() + m.toB.size());
+  const PatchAligner aligner = [&] {
+    PatchAlignerParams ap;
+    ap.halfWindow = params.wideBaseline.alignHalfWindow;
+    return PatchAligner(ap);
+  }();
+  const auto collect = [&](const std::vector<WideBaselineMatch>& ms, const PreparedReference& ref,
+                           std::vector<std::size_t>& index) {
+    for (std::size_t i = 0; i < ms.size(); ++i) {
+      const WideBaselineMatch& x = ms[i];
+      const cv::Point2f corner = c.pixels[static_cast<std::size_t>(x.frameCorner)];
+      std::optional<PatchAlignment> aligned;
+      if (params.wideBaseline.alignFrameSide && x.frameToReference)
+        aligned =
+            aligner.align(ref.gray, ref.measuredPixels[static_cast<std::size_t>(x.referenceCorner)],
+                          *x.frameToReference, gray, corner);
+      index[i] = pixels.size();
+      pixels.push_back(aligned ? aligned->position : corner);
+    }
+  };
+  collect(m.toA, refA, out.toA);
+  collect(m.toB, refB, out.toB);
+
+  const double readoutUsed = readout();
+  out.readout = readoutUsed;
+  // Rolling shutter: row y was exposed (y - c) / (rows - 1) readouts after the middle row c; the
+  // measurement moves back along its image velocity (pixels per frame interval) by that fraction
+  // of it. Matching keeps the observed pixels.
+  const bool estimating = params.pose.estimateRollingShutter && m.haveFrameToFrame;
+  std::vector<cv::Point2f> corrected = pixels, unitShifted;
+  if ((readoutUsed > 0 || estimating) && m.haveFrameToFrame) {
+    const double middle = 0.5 * (gray.rows - 1);
+    if (estimating) unitShifted = pixels;
+    for (std::size_t i = 0; i < corrected.size(); ++i) {
+      cv::Point2f& p = corrected[i];
+      const cv::Vec3d q = m.H * cv::Vec3d(p.x, p.y, 1.0);
+      if (!(std::abs(q[2]) > 1e-12)) continue;
+      const double f = (p.y - middle) / (gray.rows - 1);
+      // The image velocity at the middle row's instant: H gives it half a frame earlier, and the
+      // previous frame's homography one and a half; extrapolated linearly (hand-held motion
+      // accelerates: measured at 1280x720, webcam effects, readout known, cube error mean
+      // 0.353 px with the backward difference alone, 0.267 px extrapolated).
+      double vx = p.x - q[0] / q[2], vy = p.y - q[1] / q[2];
+      if (prevFrameToFrame) {
+        const cv::Vec3d q2 = (*prevFrameToFrame) * q;
+        if (std::abs(q2[2]) > 1e-12) {
+          const double ux = q[0] / q[2] - q2[0] / q2[2], uy = q[1] / q[2] - q2[1] / q2[2];
+          vx = 1.5 * vx - 0.5 * ux;
+          vy = 1.5 * vy - 0.5 * uy;
+        }
+      }
+      const double dx = f * vx, dy = f * vy;
+      if (estimating) unitShifted[i] -= cv::Point2f(static_cast<float>(dx), static_cast<float>(dy));
+      p.x -= static_cast<float>(readoutUsed * dx);
+      p.y -= static_cast<float>(readoutUsed * dy);
+    }
+  }
+  for (const cv::Point2f& p : map.camera.undistortPixels(corrected))
+    out.undistorted.push_back(toEigen(p));
+  prevFrameToFrame = m.haveFrameToFrame ? std::optional<cv::Matx33d>(m.H) : std::nullopt;
+  if (estimating) {
+    // How far each undistorted measurement moves per unit of readout (the readout's estimate).
+    const std::vector<cv::Point2f> raw = map.camera.undistortPixels(pixels);
+    const std::vector<cv::Point2f> moved = map.camera.undistortPixels(unitShifted);
+    for (std::size_t i = 0; i < raw.size(); ++i)
+      out.shiftPerReadout.push_back(toEigen(raw[i]) - toEigen(moved[i]));
+  }
+  return out;
+}
+
+// Stage 6, three-view pairs: the frame measurements of map points (seen through A, else B),
+// each map point once.
+std::vector<PoseTracker::Impl::Pair3D> PoseTracker::Impl::threeViewPairs(
+    const FrameMatches& m, const Measurements& meas) const {
+  std::vector<Pair3D> pairs;
+  std::vector<char> usedMap(map.matches.size(), 0);
+  const auto add = [&](const std::vector<WideBaselineMatch>& ms, const PreparedReference& ref,
+                       const std::vector<std::size_t>& measurement) {
+    for (std::size_t i = 0; i < ms.size(); ++i) {
+      const int mm = ref.mapMatch[static_cast<std::size_t>(ms[i].referenceCorner)];
+      if (mm < 0 || usedMap[static_cast<std::size_t>(mm)]) continue;
+      usedMap[static_cast<std::size_t>(mm)] = 1;
+      pairs.push_back({ms[i].frameCorner, mm, measurement[i]});
+    }
+  };
+  add(m.toA, refA, meas.toA);
+  add(m.toB, refB, meas.toB);
+  return pairs;
+}
+
+// Stage 7, outlier rejection: PnP-RANSAC on the 3D-2D pairs gives a robust linear pose; the
+// matches within the gate under it (epipolar distance for every match, reprojection for the
+// pairs) enter the estimator, weighted by their corners' variances (and the map points' own
+// uncertainty: pose.map_point_sd_scale). nullopt (with the reason in r) when too few remain.
+std::optional<PoseTracker::Impl::Inliers> PoseTracker::Impl::rejectOutliers(
+    const FrameCorners& c, const FrameMatches& m, const Measurements& meas,
+    const std::vector<Pair3D>& pairs, double gate, PoseTrackingResult& r) {
   if (static_cast<int>(pairs.size()) < limits.minInliers) {
     lose(r, "too few 3D-2D matches (" + std::to_string(pairs.size()) + ")");
-    r.timings.push_back({"pose", msSince(t)});
-    return finish(r);
+    return std::nullopt;
   }
   std::vector<cv::Point3d> object;
   std::vector<cv::Point2d> image;
   for (const Pair3D& p : pairs) {
     const Eigen::Vector3d& P = map.matches[static_cast<std::size_t>(p.mapMatch)].pointA;
     object.emplace_back(P.x(), P.y(), P.z());
-    const Eigen::Vector2d& q = undist[static_cast<std::size_t>(p.frameCorner)];
+    const Eigen::Vector2d& q = meas.undistorted[p.measurement];
     image.emplace_back(q.x(), q.y());
   }
   cv::Vec3d rvec, tvec;
@@ -484,8 +604,7 @@ PoseTrackingResult PoseTracker::Impl::process(const cv::Mat& frame) {
   if (!ok || static_cast<int>(ransacInliers.size()) < limits.minInliers) {
     lose(r, "PnP-RANSAC found no pose with enough support (" +
                 std::to_string(ransacInliers.size()) + " inliers)");
-    r.timings.push_back({"pose", msSince(t)});
-    return finish(r);
+    return std::nullopt;
   }
   {
     std::vector<cv::Point3d> o;
@@ -514,95 +633,195 @@ PoseTrackingResult PoseTracker::Impl::process(const cv::Mat& frame) {
     }
     cv::solvePnPRefineLM(o, im, Kcv, cv::noArray(), rvec, tvec);
   }
-  Vector6d xLin;
-  xLin << tvec[0], tvec[1], tvec[2], rvec[0], rvec[1], rvec[2];
-  const RigidPose TAkLin = RigidPose::fromVector6(xLin);
-  const RigidPose TABinv = map.T_AB().inverse();
-
-  // Measurements: residuals under the robust pose decide which matches enter the estimator.
-  PoseMeasurements meas;
-  std::vector<char> inlierA(mA.size(), 0), inlierB(mB.size(), 0);
+  Inliers in;
+  in.xLin << tvec[0], tvec[1], tvec[2], rvec[0], rvec[1], rvec[2];
+  const RigidPose TAkLin = RigidPose::fromVector6(in.xLin);
   // Near a reference camera the epipolar geometry degenerates (F -> 0 as the baseline vanishes,
   // and the distance's derivatives blow up): below minEpipolarBaseline its terms are left out and
-  // the three-view terms carry the pose. The gate above still uses them to reject outliers.
-  const RigidPose TBkLin = TAkLin * TABinv;
+  // the three-view terms carry the pose. The gate still uses them to reject outliers.
+  const RigidPose TBkLin = TAkLin * map.T_AB().inverse();
   const bool useEpipolarA = TAkLin.translation().norm() >= limits.minEpipolarBaseline;
   const bool useEpipolarB = TBkLin.translation().norm() >= limits.minEpipolarBaseline;
   const Eigen::Matrix3d FA = fundamentalMatrix(map.camera.K(), TAkLin);
   const Eigen::Matrix3d FB = fundamentalMatrix(map.camera.K(), TBkLin);
-  auto sigmaOf = [&](float contrastK, float contrastRef) {
+  const auto sigmaOf = [&](float contrastK, float contrastRef) {
     return std::sqrt(varianceModel.variance(contrastK) + varianceModel.variance(contrastRef));
   };
-  for (std::size_t i = 0; i < mA.size(); ++i) {
-    const Eigen::Vector2d& pK = undist[static_cast<std::size_t>(mA[i].frameCorner)];
-    const Eigen::Vector2d& pRef = refA.measured[static_cast<std::size_t>(mA[i].referenceCorner)];
-    if (maxEpipolarDistance(FA, pRef, pK) > gate) continue;
-    inlierA[i] = 1;
-    if (!useEpipolarA) continue;
-    meas.toA.push_back({pRef, pK,
-                        sigmaOf(corners[static_cast<std::size_t>(mA[i].frameCorner)].contrast,
-                                refA.contrast[static_cast<std::size_t>(mA[i].referenceCorner)])});
-  }
-  for (std::size_t i = 0; i < mB.size(); ++i) {
-    const Eigen::Vector2d& pK = undist[static_cast<std::size_t>(mB[i].frameCorner)];
-    const Eigen::Vector2d& pRef = refB.measured[static_cast<std::size_t>(mB[i].referenceCorner)];
-    if (maxEpipolarDistance(FB, pRef, pK) > gate) continue;
-    inlierB[i] = 1;
-    if (!useEpipolarB) continue;
-    meas.toB.push_back({pRef, pK,
-                        sigmaOf(corners[static_cast<std::size_t>(mB[i].frameCorner)].contrast,
-                                refB.contrast[static_cast<std::size_t>(mB[i].referenceCorner)])});
-  }
-  std::vector<int> threeViewCorner;  // frame corner of each meas.threeView entry
+  const auto gateEpipolar = [&](const std::vector<WideBaselineMatch>& ms,
+                                const std::vector<std::size_t>& measurement,
+                                const PreparedReference& ref, const Eigen::Matrix3d& F,
+                                bool useEpipolar, const std::vector<char>& distinctive,
+                                std::vector<char>& inlier, std::vector<EpipolarMatch>& out) {
+    inlier.assign(ms.size(), 0);
+    for (std::size_t i = 0; i < ms.size(); ++i) {
+      const Eigen::Vector2d& pK = meas.undistorted[measurement[i]];
+      const auto rc = static_cast<std::size_t>(ms[i].referenceCorner);
+      if (maxEpipolarDistance(F, ref.measured[rc], pK) > gate) continue;
+      inlier[i] = 1;
+      in.distinctive += distinctive[rc] ? 1 : 0;
+      if (!useEpipolar) continue;
+      out.push_back({ref.measured[rc], pK,
+                     sigmaOf(c.corners[static_cast<std::size_t>(ms[i].frameCorner)].contrast,
+                             ref.contrast[rc])});
+    }
+  };
+  gateEpipolar(m.toA, meas.toA, refA, FA, useEpipolarA, distinctiveA, in.inlierA,
+               in.measurements.toA);
+  gateEpipolar(m.toB, meas.toB, refB, FB, useEpipolarB, distinctiveB, in.inlierB,
+               in.measurements.toB);
   for (const Pair3D& p : pairs) {
     const Eigen::Vector3d& P = map.matches[static_cast<std::size_t>(p.mapMatch)].pointA;
-    const Eigen::Vector2d& pK = undist[static_cast<std::size_t>(p.frameCorner)];
+    const Eigen::Vector2d& pK = meas.undistorted[p.measurement];
     if ((map.camera.project(TAkLin * P) - pK).norm() > gate) continue;
-    threeViewCorner.push_back(p.frameCorner);
-    meas.threeView.push_back(
-        {P, pK, varianceModel.sigma(corners[static_cast<std::size_t>(p.frameCorner)].contrast)});
+    in.threeViewMeasurement.push_back(p.measurement);
+    const double sigma =
+        varianceModel.sigma(c.corners[static_cast<std::size_t>(p.frameCorner)].contrast);
+    ThreeViewMatch t{P, pK, sigma};
+    if (params.pose.mapPointSdScale > 0)
+      t.whitening = threeViewWhitening(TAkLin, p.mapMatch, sigma);
+    in.measurements.threeView.push_back(t);
   }
-  r.inliers = static_cast<int>(meas.threeView.size());
+  r.inliers = static_cast<int>(in.measurements.threeView.size());
+  r.distinctiveInliers = in.distinctive;
   if (r.inliers < limits.minInliers) {
     lose(r, "too few inliers (" + std::to_string(r.inliers) + ")");
-    r.timings.push_back({"pose", msSince(t)});
-    return finish(r);
+    return std::nullopt;
   }
+  return in;
+}
 
-  r.timings.push_back({"outliers", msSince(t)});
-  t = Clock::now();
-  // Pose: standard least squares or the temporal regulariser (Eq. 12 / Eq. 13).
-  const std::optional<PoseEstimate> est = regularizer->step(*estimator, meas, xLin);
-  r.timings.push_back({"pose", msSince(t)});
-  if (!est || !est->x.allFinite()) {
-    lose(r, "the pose estimator did not converge");
-    return finish(r);
-  }
-  const RigidPose TAk = RigidPose::fromVector6(est->x);
+// Stage 9, support: the estimate must be finite with a sane covariance, fit its three-view
+// matches, and the matches alone must pin the scene's image position down (PoseSupport: black,
+// textureless and heavily blurred frames fail here). False (with the reason in r) otherwise.
+bool PoseTracker::Impl::checkSupport(const PoseEstimate& est, const PoseMeasurements& meas,
+                                     double scale, PoseTrackingResult& r) {
+  const RigidPose TAk = RigidPose::fromVector6(est.x);
   double sse = 0.0;
-  for (const ThreeViewMatch& m : meas.threeView)
-    sse += (map.camera.project(TAk * m.pointA) - m.pK).squaredNorm();
+  for (const ThreeViewMatch& t : meas.threeView)
+    sse += (map.camera.project(TAk * t.pointA) - t.pK).squaredNorm();
   const double rms = std::sqrt(sse / static_cast<double>(meas.threeView.size()));
-  const double sigmaT = std::sqrt(est->covariance.topLeftCorner<3, 3>().diagonal().maxCoeff());
-  if (!est->covarianceValid || !std::isfinite(sigmaT) || sigmaT > limits.maxSigmaTranslation) {
-    lose(r, est->covarianceValid ? "pose covariance blew up (translation SD " +
-                                       std::to_string(sigmaT * 1000.0) + " mm)"
-                                 : "pose covariance is not positive definite");
-    return finish(r);
+  const double sigmaT = std::sqrt(est.covariance.topLeftCorner<3, 3>().diagonal().maxCoeff());
+  if (!est.covarianceValid || !std::isfinite(sigmaT) || sigmaT > limits.maxSigmaTranslation) {
+    lose(r, est.covarianceValid ? "pose covariance blew up (translation SD " +
+                                      std::to_string(sigmaT * 1000.0) + " mm)"
+                                : "pose covariance is not positive definite");
+    return false;
   }
   if (rms > limits.maxRmsPx * scale) {
     lose(r, "reprojection RMS " + std::to_string(rms) + " px at the solution is too large");
-    return finish(r);
+    return false;
   }
-  // Support: the pose the matches alone determine, with the residuals they actually show, must
-  // pin the scene down in the image (blurred frames: few, poorly localised corners).
   const std::optional<double> supportSd = reprojectionSupportSdPx(map.camera, TAk, meas.threeView);
   r.supportSdPx = supportSd.value_or(INFINITY);
   if (!supportSd || *supportSd > limits.maxSupportSdPx * scale) {
     lose(r, "too little support: the matches fix the scene's image position only to " +
                 std::to_string(r.supportSdPx) + " px (SD)");
+    return false;
+  }
+  return true;
+}
+
+// Stage 10, seeds for the next frame: the inlier matches (and the debug primitives).
+void PoseTracker::Impl::keepInliers(const FrameCorners& c, const FrameMatches& m, const Inliers& in,
+                                    PoseTrackingResult& r) {
+  prevA.clear();
+  prevB.clear();
+  const auto keep = [&](const std::vector<WideBaselineMatch>& ms, const std::vector<char>& inlier,
+                        const PreparedReference& ref, std::vector<PreviousMatch>& previous,
+                        std::vector<std::pair<cv::Point2f, cv::Point2f>>& debug) {
+    for (std::size_t i = 0; i < ms.size(); ++i) {
+      if (!inlier[i]) continue;
+      const cv::Point2f p = c.pixels[static_cast<std::size_t>(ms[i].frameCorner)];
+      previous.push_back({p, ms[i].referenceCorner});
+      debug.emplace_back(p, ref.matchable.corners[static_cast<std::size_t>(ms[i].referenceCorner)]);
+    }
+  };
+  keep(m.toA, in.inlierA, refA, prevA, r.inliersA);
+  keep(m.toB, in.inlierB, refB, prevB, r.inliersB);
+}
+
+PoseTrackingResult PoseTracker::Impl::process(const cv::Mat& frame) {
+  const Clock::time_point start = Clock::now();
+  PoseTrackingResult r;
+  r.state = state;
+  if (frame.empty()) throw Error("PoseTracker: empty frame");
+  if (frame.size() != map.camera.imageSize())
+    throw Error("PoseTracker: frame size " + std::to_string(frame.cols) + "x" +
+                std::to_string(frame.rows) + " differs from the map's camera " +
+                std::to_string(map.camera.imageSize().width) + "x" +
+                std::to_string(map.camera.imageSize().height));
+  const cv::Mat gray = toGray8(frame);
+  const double scale = resolutionScale(gray.size());
+  const double gate = limits.gatePx * scale;
+
+  // 1. Corners.
+  Clock::time_point t = Clock::now();
+  FrameCorners corners = detectCorners(gray);
+  r.corners = static_cast<int>(corners.corners.size());
+  r.frameCorners = corners.pixels;
+  r.timings.push_back({"corners", msSince(t)});
+  // A seeded frame is matched like a tracked one, from the seed's projections (seedsFromPose).
+  const std::optional<RigidPose> seeded = std::exchange(seedPose, std::nullopt);
+  const bool wasTracking = seeded || (state == TrackingState::Tracking && !prevA.empty());
+  auto finish = [&](PoseTrackingResult& res) {
+    res.totalMs = msSince(start);
+    prevF2F = std::move(corners.f2fPoints);
+    prevF2FWindows = std::move(corners.f2fWindows);
+    return res;
+  };
+  if (r.corners < limits.minCorners) {
+    lose(r, "too few corners (" + std::to_string(r.corners) +
+                "): textureless, black or blurred frame");
     return finish(r);
   }
+
+  // 2-4. Matches to V_A and V_B: frame to frame and wide baseline while tracking (or from a
+  // seed), else the paper's initialisation; then completed through the map's A<->B matches.
+  FrameMatches matches;
+  if (wasTracking) {
+    t = Clock::now();
+    if (seeded)
+      seedsFromPose(*seeded, gray.size());
+    else
+      matchFrameToFrame(corners, scale, matches);
+    r.timings.push_back({seeded ? "seed" : "frame-to-frame", msSince(t)});
+    matchWideBaseline(gray, corners, seeded.has_value(), matches, r);
+  } else {
+    t = Clock::now();
+    matchInitial(gray, corners, matches);
+    r.timings.push_back({"initialise", msSince(t)});
+  }
+  completeThroughMap(corners.pixels.size(), matches);
+  r.matchesA = static_cast<int>(matches.toA.size());
+  r.matchesB = static_cast<int>(matches.toB.size());
+
+  // 5. Measurements (frame-side alignment, rolling shutter, lens).
+  t = Clock::now();
+  const Measurements meas = measure(gray, corners, matches);
+  r.rollingShutterReadout = meas.readout;
+  r.timings.push_back({"measure", msSince(t)});
+
+  // 6-7. Three-view pairs, outlier rejection.
+  t = Clock::now();
+  const std::vector<Pair3D> pairs = threeViewPairs(matches, meas);
+  r.threeView = static_cast<int>(pairs.size());
+  const std::optional<Inliers> inliers = rejectOutliers(corners, matches, meas, pairs, gate, r);
+  r.timings.push_back({"outliers", msSince(t)});
+  if (!inliers) return finish(r);
+
+  // 8. Pose: standard least squares or the temporal regulariser (Eq. 12 / Eq. 13).
+  t = Clock::now();
+  const std::optional<PoseEstimate> est =
+      regularizer->step(*estimator, inliers->measurements, inliers->xLin);
+  r.timings.push_back({"pose", msSince(t)});
+  if (!est || !est->x.allFinite()) {
+    lose(r, "the pose estimator did not converge");
+    return finish(r);
+  }
+
+  // 9. Support.
+  if (!checkSupport(*est, inliers->measurements, scale, r)) return finish(r);
+  const RigidPose TAk = RigidPose::fromVector6(est->x);
   r.message = seeded        ? "tracking from a seeded pose"
               : wasTracking ? "tracking"
                             : "initialised from the reference images";
@@ -611,37 +830,22 @@ PoseTrackingResult PoseTracker::Impl::process(const cv::Mat& frame) {
   r.T_Ak = TAk;
   r.worldToCamera = TAk * map.T_A;
   r.covariance = est->covariance;
-  if (!shiftPerReadout.empty()) {
+  if (!meas.shiftPerReadout.empty()) {
     // The tracked frame's residuals inform the readout's estimate (used from a later frame on).
     std::vector<RollingShutterObservation> observations;
-    observations.reserve(meas.threeView.size());
-    for (std::size_t i = 0; i < meas.threeView.size(); ++i) {
-      const ThreeViewMatch& m = meas.threeView[i];
-      const Eigen::Vector3d X = TAk * m.pointA;
-      observations.push_back({X, map.camera.project(X) - m.pK,
-                              shiftPerReadout[static_cast<std::size_t>(threeViewCorner[i])],
-                              m.sigma});
+    const PoseMeasurements& pm = inliers->measurements;
+    observations.reserve(pm.threeView.size());
+    for (std::size_t i = 0; i < pm.threeView.size(); ++i) {
+      const ThreeViewMatch& x = pm.threeView[i];
+      const Eigen::Vector3d X = TAk * x.pointA;
+      observations.push_back({X, map.camera.project(X) - x.pK,
+                              meas.shiftPerReadout[inliers->threeViewMeasurement[i]], x.sigma});
     }
     shutter->addFrame(map.camera.K()(0, 0), map.camera.K()(1, 1), observations);
   }
 
-  // Seeds for the next frame: the inlier matches.
-  prevA.clear();
-  prevB.clear();
-  for (std::size_t i = 0; i < mA.size(); ++i)
-    if (inlierA[i]) {
-      prevA.push_back({pixels[static_cast<std::size_t>(mA[i].frameCorner)], mA[i].referenceCorner});
-      r.inliersA.emplace_back(
-          pixels[static_cast<std::size_t>(mA[i].frameCorner)],
-          refA.matchable.corners[static_cast<std::size_t>(mA[i].referenceCorner)]);
-    }
-  for (std::size_t i = 0; i < mB.size(); ++i)
-    if (inlierB[i]) {
-      prevB.push_back({pixels[static_cast<std::size_t>(mB[i].frameCorner)], mB[i].referenceCorner});
-      r.inliersB.emplace_back(
-          pixels[static_cast<std::size_t>(mB[i].frameCorner)],
-          refB.matchable.corners[static_cast<std::size_t>(mB[i].referenceCorner)]);
-    }
+  // 10. Seeds for the next frame.
+  keepInliers(corners, matches, *inliers, r);
   return finish(r);
 }
 
@@ -657,6 +861,8 @@ void PoseTracker::setParams(const TrackerParams& params) {
   impl_->params = params;
   impl_->applyCornerParams();
   impl_->applyPoseParams();
+  impl_->computeDistinctiveCorners();
+  impl_->computePointCovariances();
 }
 void PoseTracker::setMotionModel(const ArMotionModel& model) {
   model.check();
@@ -666,6 +872,7 @@ void PoseTracker::setMotionModel(const ArMotionModel& model) {
 void PoseTracker::setCornerVarianceModel(const CornerVarianceModel& model) {
   model.check();
   impl_->varianceModel = model;
+  impl_->computePointCovariances();
 }
 void PoseTracker::seed(const RigidPose& worldToCamera) {
   if (!worldToCamera.allFinite()) throw Error("PoseTracker::seed: non-finite pose");

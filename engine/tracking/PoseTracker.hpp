@@ -57,6 +57,7 @@ struct PoseTrackingResult {
   double supportSdPx = 0.0;                // PoseSupport: reprojection SD from the matches alone
   double rollingShutterReadout = 0.0;      // the readout this frame was corrected with
   int corners = 0, matchesA = 0, matchesB = 0, threeView = 0, inliers = 0;
+  int distinctiveInliers = 0;  // inliers on distinctive structure (DistinctiveCorners)
   std::vector<StageTiming> timings;
   double totalMs = 0.0;
   // Debug primitives in frame pixels: corners and inlier matches (frame pixel, reference pixel).

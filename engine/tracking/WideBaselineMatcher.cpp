@@ -76,6 +76,15 @@ inline cv::Point2d apply(const cv::Matx33d& M, cv::Point2d p) {
   return {q[0] / q[2], q[1] / q[2]};
 }
 
+// The derivative of p -> M p (homogeneous) at p.
+cv::Matx22d jacobianAt(const cv::Matx33d& M, cv::Point2d p) {
+  const cv::Vec3d q = M * cv::Vec3d(p.x, p.y, 1.0);
+  const double x = q[0] / q[2], y = q[1] / q[2];
+  return cv::Matx22d(M(0, 0) - x * M(2, 0), M(0, 1) - x * M(2, 1), M(1, 0) - y * M(2, 0),
+                     M(1, 1) - y * M(2, 1)) *
+         (1.0 / q[2]);
+}
+
 // Least-squares affine map src -> dst at `p` from the pairs listed in `nearby` nearest to p (in
 // src): k of them, more (up to 8) when the nearest are nearly collinear. False when degenerate.
 bool fitLocalAffine(cv::Point2d p, const std::vector<cv::Point2f>& src,
@@ -247,7 +256,7 @@ std::vector<WideBaselineMatch> WideBaselineMatcher::match(
     if (bestFrame < 0) continue;
     WideBaselineMatch& slot = bestPerFrame[static_cast<std::size_t>(bestFrame)];
     if (slot.frameCorner < 0 || bestScore > slot.score)
-      slot = {bestFrame, t.corner, bestScore, t.pK};
+      slot = {bestFrame, t.corner, bestScore, t.pK, jacobianAt(t.W, t.pK)};
   }
   for (const WideBaselineMatch& m : bestPerFrame)
     if (m.frameCorner >= 0) matches.push_back(m);

@@ -12,10 +12,11 @@
 // corners (WideBaselineParams), corners are taken in MatchableReference::order and those
 // predicted outside the frame do not count.
 #include <opencv2/core.hpp>
+#include <optional>
 #include <vector>
 
 #include "engine/config/WideBaselineParams.hpp"
-#include "engine/tracking/CornerGrid.hpp"
+#include "engine/features/CornerGrid.hpp"
 
 namespace reftrack {
 
@@ -60,6 +61,9 @@ struct WideBaselineMatch {
   int frameCorner = -1, referenceCorner = -1;
   double score = 0.0;
   cv::Point2d predicted;  // p'_k = W^-1 p_A: where the reference corner was expected in V_k
+  // The local linear map of W at the frame corner (frame offsets -> reference offsets), for the
+  // frame-side alignment of the reference window; none when the match was not made through W.
+  std::optional<cv::Matx22d> frameToReference{};
 };
 
 class WideBaselineMatcher {

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <opencv2/calib3d.hpp>
 
+#include "app/research/baselines/OpenCvFeatures.hpp"
 #include "engine/config/ResolutionScale.hpp"
 #include "engine/core/Error.hpp"
 #include "engine/features/CornerDetector.hpp"
@@ -19,19 +20,9 @@ constexpr double kRansacPxAt640x480 = 3.0;  // OpenCV's documented default thres
 
 OpenCvFeatureBaseline::OpenCvFeatureBaseline(const std::string& detector, const cv::Mat& reference)
     : name_(detector) {
-  int norm = cv::NORM_HAMMING;
-  if (detector == "sift") {
-    detector_ = cv::SIFT::create();
-    norm = cv::NORM_L2;
-  } else if (detector == "akaze") {
-    detector_ = cv::AKAZE::create();
-  } else if (detector == "orb") {
-    detector_ = cv::ORB::create(1000);
-  } else {
-    throw Error("feature baseline: detector must be 'sift', 'akaze' or 'orb', got '" + detector +
-                "'");
-  }
-  matcher_ = cv::BFMatcher::create(norm);
+  const OpenCvFeatures features = openCvFeatures(detector, 1000);
+  detector_ = features.detector;
+  matcher_ = cv::BFMatcher::create(features.norm);
   if (reference.empty()) throw Error("feature baseline: the reference image is empty");
   detector_->detectAndCompute(toGray8(reference), cv::noArray(), refKeypoints_, refDescriptors_);
   if (refKeypoints_.size() < static_cast<size_t>(kMinInliers))

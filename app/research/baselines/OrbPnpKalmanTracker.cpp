@@ -106,6 +106,11 @@ OrbPnpKalmanTracker::OrbPnpKalmanTracker(const ReferenceMap& map, OrbPnpKalmanPa
   }
 }
 
+void OrbPnpKalmanTracker::reset() {
+  initialised_ = false;
+  cv::setIdentity(kf_.errorCovPost, cv::Scalar::all(1));
+}
+
 std::optional<RigidPose> OrbPnpKalmanTracker::process(const cv::Mat& frame) {
   cv::Mat gray = frame;
   if (frame.channels() == 3) cv::cvtColor(frame, gray, cv::COLOR_BGR2GRAY);

@@ -31,6 +31,8 @@ class OrbPnpKalmanTracker {
   explicit OrbPnpKalmanTracker(const ReferenceMap& map, OrbPnpKalmanParams params = {});
   // The filtered world->camera pose, or nullopt until the first good PnP measurement.
   std::optional<RigidPose> process(const cv::Mat& frame);
+  // Forgets the filter's state: the next frame starts it again from its PnP pose (a cold start).
+  void reset();
   int lastInliers() const { return lastInliers_; }
   int modelPoints() const { return static_cast<int>(modelPoints_.size()); }
 

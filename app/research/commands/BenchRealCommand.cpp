@@ -1,13 +1,22 @@
-// `reftrack bench-real`: the 6-DOF tracker on a real clip with a prepared map and ground truth
-// from a card on the table (RealFootageBenchmark): tracked %, grid and cube error against the
-// card, median and p90 thread CPU per tracked frame, beside the ORB + solvePnPRansac +
-// KalmanFilter baseline measured in the same run, and their ratio.
+// `reftrack bench-real`: the 6-DOF tracker on real footage with ground truth, beside its peers
+// measured in the same run. Two modes:
+//  - `--input` (GroundTruthBenchmark): any recording with a true pose per frame (an image folder
+//    or video with a TUM file, tum:DIR, euroc:DIR), references taken from its frames: reftrack,
+//    SIFT / AKAZE / ORB + PnP per frame and ORB + PnP + Kalman, in sequence order and shuffled
+//    (cold starts): coverage, cube error, wrong poses, thread CPU per frame; table, CSV and plot.
+//  - otherwise (RealFootageBenchmark): a clip of a card on a table, the truth from the card
+//    (default ViSP's postcard clip): tracked %, grid and cube error against the card, median and
+//    p90 thread CPU per tracked frame beside ORB + PnP + Kalman, and their ratio.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
 #include <opencv2/core/utility.hpp>
 
 #include "app/commands/Commands.hpp"
+#include "app/research/sixdof/GroundTruthBenchmark.hpp"
+#include "app/research/sixdof/GroundTruthBenchmarkReport.hpp"
+#include "app/research/sixdof/GroundTruthSequence.hpp"
 #include "app/research/sixdof/RealFootageBenchmark.hpp"
 #include "app/research/sixdof/SixDofRuns.hpp"
 #include "engine/core/Error.hpp"
@@ -22,7 +31,41 @@ struct BenchRealArgs {
   RealFootageOptions options = RealFootageOptions::postcard({});
   std::vector<float> target;  // --target: 8 numbers, or empty for the postcard's corners
   std::filesystem::path params, prepareParams, trajectory, framesCsv;
+  // --input mode (GroundTruthBenchmark); passes: --passes when given, else 1.
+  GroundTruthSequenceSpec sequence;
+  GroundTruthBenchmarkOptions groundTruth;
+  std::vector<double> cubeCentre = {0.0, 0.0, 0.0};
+  std::filesystem::path out;
 };
+
+void runGroundTruthMode(const BenchRealArgs& a) {
+  cv::setNumThreads(1);
+  GroundTruthBenchmarkOptions o = a.groundTruth;
+  o.cubeCentre = Eigen::Vector3d(a.cubeCentre[0], a.cubeCentre[1], a.cubeCentre[2]);
+  o.frames = a.options.frames;
+  o.check();
+  const TrackerParams params = a.params.empty() ? TrackerParams{} : TrackerParams::load(a.params);
+  const ReferencePreparerParams prepareParams =
+      a.prepareParams.empty() ? ReferencePreparerParams{}
+                              : ReferencePreparerParams::load(a.prepareParams);
+  GroundTruthSequenceSpec spec = a.sequence;
+  // Every frame benchmarked, and the reference frames even when they lie beyond them.
+  const int lastReference = *std::max_element(o.references.begin(), o.references.end());
+  spec.frames = o.frames > 0 ? std::max(o.frames, lastReference + 1) : 0;
+  const GroundTruthSequence sequence = loadGroundTruthSequence(spec);
+  std::printf("%s: %zu frames read; camera: %s\n", sequence.framesDescription.c_str(),
+              sequence.frames.size(), sequence.cameraDescription.c_str());
+  std::fflush(stdout);
+  const GroundTruthBenchmarkResult r = runGroundTruthBenchmark(
+      sequence, o, params, prepareParams,
+      [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); });
+  std::printf("%s", groundTruthBenchmarkTable(r).c_str());
+  if (!a.out.empty()) {
+    const GroundTruthBenchmarkFiles files = writeGroundTruthBenchmarkFiles(r, a.out);
+    std::printf("wrote the table %s, per-frame errors %s, plot %s\n", files.table.c_str(),
+                files.csv.c_str(), files.plot.c_str());
+  }
+}
 
 void printRun(const RealFootageRun& r) {
   const ErrorStats grid = ErrorStats::of(r.gridErrorPx), cube = ErrorStats::of(r.cubeErrorPx);
@@ -37,51 +80,122 @@ void printRun(const RealFootageRun& r) {
 
 CommandRegistration registerBenchRealCommand(CLI::App& parent) {
   auto a = std::make_shared<BenchRealArgs>();
+  a->groundTruth.cubeEdge = 0.1;
   CLI::App* sub = parent.add_subcommand(
       "bench-real",
-      "6-DOF tracking of a real clip with a prepared map vs ORB + PnP + Kalman: error against a "
-      "card's ground truth and thread CPU per tracked frame");
-  sub->add_option("--clip", a->clip, "Video of a card on a table (default: ViSP's postcard clip)")
-      ->capture_default_str();
-  sub->add_option("--frames", a->options.frames, "Frames tracked from the start (0: all)")
+      "6-DOF tracking of real footage with ground truth vs per-frame OpenCV peers and ORB + PnP + "
+      "Kalman: cube error, coverage, wrong poses (also shuffled: cold starts), thread CPU per "
+      "frame");
+  // Either mode.
+  sub->add_option("--frames", a->options.frames, "Frames benchmarked from the start (0: all)")
       ->check(CLI::Range(0, 1000000))
       ->capture_default_str();
-  sub->add_option("--references", a->options.references,
-                  "Frame indices of the reference images, comma-separated (>= 2)")
-      ->delimiter(',')
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
-  sub->add_option("--passes", a->options.passes,
-                  "Tracking passes over the clip for the timing (each tracker fresh; errors from "
-                  "the first)")
-      ->check(CLI::Range(1, 100))
-      ->capture_default_str();
-  sub->add_option("--target", a->target,
-                  "The card's corners in frame 0 to a few pixels: x,y of top-left, top-right, "
-                  "bottom-right, bottom-left (default: the postcard clip's)")
-      ->delimiter(',')
-      ->expected(8);
-  sub->add_option("--target-width", a->options.targetTopEdgeMetres,
-                  "Length of the card's top edge, metres (the world's scale)")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
-  sub->add_option("--focal", a->options.focalPx,
-                  "Focal length fx = fy in pixels, principal point at the centre (the postcard "
-                  "clip has no calibration; ViSP assumes 840)")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
+  CLI::Option* passes =
+      sub->add_option("--passes", a->options.passes,
+                      "Passes over the frames for the timing (errors from the first; default 3 "
+                      "for a card clip, 1 with --input)")
+          ->check(CLI::Range(1, 100));
   sub->add_option("--params", a->params, "TrackerParams YAML")->check(CLI::ExistingFile);
   sub->add_option("--prepare-params", a->prepareParams, "`prepare --params` YAML for the map")
       ->check(CLI::ExistingFile);
-  sub->add_flag("!--no-baseline", a->options.baseline, "Skip the ORB + PnP + Kalman baseline");
-  sub->add_option("--trajectory", a->trajectory,
-                  "Write reftrack's poses (TUM, world = the card; time = frame / fps)");
-  sub->add_option("--frames-csv", a->framesCsv,
-                  "Write one CSV row per frame of reftrack's first pass: state, pair, grid and "
-                  "cube error, distance from each reference, matches, inliers, the card's corners "
-                  "and the truth's own corner shift (refined vs followed homography), message");
+  // Any recording with ground truth.
+  CLI::Option* input = sub->add_option(
+      "--input", a->sequence.input,
+      "A recording with ground truth: image folder (frame k at k / 30 s), video, tum:DIR or "
+      "euroc:DIR; selects this mode");
+  CLI::Option* camera = sub->add_option("--camera", a->sequence.camera,
+                                        "With --input: camera.yml (euroc: inputs bring theirs)");
+  CLI::Option* gt = sub->add_option(
+      "--gt", a->sequence.groundTruth,
+      "With --input: TUM trajectory (camera in world), tum:DIR or euroc:DIR (default for "
+      "tum:/euroc: inputs: their own)");
+  CLI::Option* refFrames =
+      sub->add_option("--ref-frames", a->groundTruth.references,
+                      "With --input: frame indices of the references, posed by the ground truth "
+                      "(>= 2), e.g. 0,40")
+          ->delimiter(',')
+          ->check(CLI::NonNegativeNumber);
+  CLI::Option* cubeCentre =
+      sub->add_option("--cube-centre", a->cubeCentre,
+                      "With --input: x,y,z of the centre of the scored cube's base (world, m; the "
+                      "cube extends to +z)")
+          ->delimiter(',')
+          ->expected(3)
+          ->capture_default_str();
+  CLI::Option* cubeEdge = sub->add_option("--cube-edge", a->groundTruth.cubeEdge,
+                                          "With --input: the scored cube's edge (m)")
+                              ->check(CLI::PositiveNumber)
+                              ->capture_default_str();
+  CLI::Option* shuffleSeed =
+      sub->add_option("--shuffle-seed", a->groundTruth.shuffleSeed,
+                      "With --input: seed of the shuffled order (every frame a cold start)")
+          ->capture_default_str();
+  CLI::Option* methods =
+      sub->add_option("--methods", a->groundTruth.methods,
+                      "With --input: methods to run, of reftrack,sift,akaze,orb,kalman")
+          ->delimiter(',')
+          ->capture_default_str();
+  CLI::Option* out = sub->add_option(
+      "--out", a->out,
+      "With --input: folder for table.txt, cube_errors.csv and cube_errors.png (written once "
+      "every run is done)");
+  for (CLI::Option* o : {camera, gt, refFrames, cubeCentre, cubeEdge, shuffleSeed, methods, out})
+    o->needs(input);
+  // A card clip (the default mode).
+  CLI::Option* clip = sub->add_option("--clip", a->clip,
+                                      "Video of a card on a table (default: ViSP's postcard clip)")
+                          ->capture_default_str();
+  CLI::Option* references =
+      sub->add_option("--references", a->options.references,
+                      "Card clip: frame indices of the reference images, comma-separated (>= 2)")
+          ->delimiter(',')
+          ->check(CLI::NonNegativeNumber)
+          ->capture_default_str();
+  CLI::Option* target =
+      sub->add_option("--target", a->target,
+                      "Card clip: the card's corners in frame 0 to a few pixels: x,y of top-left, "
+                      "top-right, bottom-right, bottom-left (default: the postcard clip's)")
+          ->delimiter(',')
+          ->expected(8);
+  CLI::Option* targetWidth =
+      sub->add_option("--target-width", a->options.targetTopEdgeMetres,
+                      "Card clip: length of the card's top edge, metres (the world's scale)")
+          ->check(CLI::PositiveNumber)
+          ->capture_default_str();
+  CLI::Option* focal =
+      sub->add_option("--focal", a->options.focalPx,
+                      "Card clip: focal length fx = fy in pixels, principal point at the centre "
+                      "(the postcard clip has no calibration; ViSP assumes 840)")
+          ->check(CLI::PositiveNumber)
+          ->capture_default_str();
+  CLI::Option* noBaseline = sub->add_flag("!--no-baseline", a->options.baseline,
+                                          "Card clip: skip the ORB + PnP + Kalman baseline");
+  CLI::Option* trajectory = sub->add_option(
+      "--trajectory", a->trajectory,
+      "Card clip: write reftrack's poses (TUM, world = the card; time = frame / fps)");
+  CLI::Option* framesCsv = sub->add_option(
+      "--frames-csv", a->framesCsv,
+      "Card clip: write one CSV row per frame of reftrack's first pass: state, pair, grid and "
+      "cube error, distance from each reference, matches, inliers, the card's corners and the "
+      "truth's own corner shift (refined vs followed homography), message");
+  for (CLI::Option* o :
+       {clip, references, target, targetWidth, focal, noBaseline, trajectory, framesCsv})
+    o->excludes(input);
   // Usage errors (exit 2): checked when the command line is parsed, before anything is read.
-  sub->callback([a] {
+  sub->callback([a, input, passes] {
+    if (input->count() > 0) {
+      if (passes->count() == 0) a->options.passes = 1;
+      a->groundTruth.passes = a->options.passes;
+      if (a->groundTruth.references.empty())
+        throw CLI::RequiredError("--ref-frames (with --input)");
+      GroundTruthBenchmarkOptions check = a->groundTruth;
+      try {
+        check.check();
+      } catch (const Error& e) {
+        throw CLI::ValidationError("bench-real", e.what());
+      }
+      return;
+    }
     const std::vector<int>& refs = a->options.references;
     if (refs.size() < 2)
       throw CLI::ValidationError("--references", "at least two reference frames are needed");
@@ -92,15 +206,29 @@ CommandRegistration registerBenchRealCommand(CLI::App& parent) {
                                      "frame " + std::to_string(refs[i]) + " is given twice");
   });
   sub->footer(
-      "Ground truth (PlanarTargetTruth): the card's corners are followed from frame 0 by the\n"
-      "homography tracker and refined by cornerSubPix; IPPE on them gives each frame's pose, the\n"
-      "card's plane being the world. The map is prepared from the reference frames with those\n"
-      "poses (as `prepare --poses`) and the clip tracked by the MultiReferenceTracker. grid: mean\n"
-      "px distance of a 7x7 grid over the card from where the followed homography puts it; cube:\n"
-      "a cube (0.1 m) on the card's centre against its projection through the card's pose. Speed:\n"
-      "thread CPU per tracked frame, one thread (cv::setNumThreads(1)); each pass runs both\n"
-      "trackers in turn. Stage times are wall clock, first pass.");
-  return {sub, [a] {
+      "With --input: a map is prepared from the --ref-frames with their true poses (as `prepare\n"
+      "--input --ref-frames --poses`); reftrack (MultiReferenceTracker), SIFT / AKAZE / ORB\n"
+      "keypoints matched to the same references (triangulated with their poses) + solvePnPRansac\n"
+      "+ solvePnPRefineLM per frame, and ORB + PnP + Kalman each run in sequence order and "
+      "shuffled\n"
+      "(every frame a cold start). cube: mean px distance of the cube's 8 vertices projected with\n"
+      "K alone, estimated vs true pose; wrong: more than 5 px off; good: within 1.5 px. CPU: "
+      "thread\n"
+      "time per frame, one thread (cv::setNumThreads(1)).\n"
+      "Card clip (no --input), ground truth (PlanarTargetTruth): the card's corners are\n"
+      "followed from frame 0 by the homography tracker and refined by cornerSubPix; IPPE on them\n"
+      "gives each frame's pose, the card's plane being the world. The map is prepared from the\n"
+      "reference frames with those poses (as `prepare --poses`) and the clip tracked by the\n"
+      "MultiReferenceTracker. grid: mean px distance of a 7x7 grid over the card from where the\n"
+      "followed homography puts it; cube: a cube (0.1 m) on the card's centre against its\n"
+      "projection through the card's pose. Speed: thread CPU per tracked frame, one thread\n"
+      "(cv::setNumThreads(1)); each pass runs both trackers in turn. Stage times are wall clock,\n"
+      "first pass.");
+  return {sub, [a, input] {
+            if (input->count() > 0) {
+              runGroundTruthMode(*a);
+              return;
+            }
             cv::setNumThreads(1);
             RealFootageOptions o = a->options;
             o.clip = a->clip;

@@ -194,8 +194,13 @@ RealFootageResult runRealFootageBenchmark(const RealFootageOptions& o, const Tra
     result.referenceBaselinesMm.push_back(
         1000.0 * (pose->cameraCentre() - poses.front().cameraCentre()).norm());
   }
+  // The card is the clip's fiducial: its four-corner poses (under a guessed K) are treated as
+  // marker poses, refined by preparation.refine_poses as `prepare --marker` would, not as given
+  // poses of a stated accuracy (preparation.refine_given_poses).
+  ReferencePreparerParams cardPreparation = prepareParams;
+  cardPreparation.refineGivenPoses = prepareParams.refinePoses;
   const MultiPreparation prepared =
-      MultiReferencePreparer(camera, prepareParams).prepare(images, poses, "card corners");
+      MultiReferencePreparer(camera, cardPreparation).prepare(images, poses, "card corners");
   result.mapPoints = static_cast<int>(prepared.map.points.size());
   const CardScorer scorer(camera, truth, o.cubeSideMetres);
 

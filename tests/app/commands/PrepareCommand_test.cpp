@@ -12,6 +12,7 @@
 #include "TestPaths.hpp"
 #include "app/simulator/SceneSimulator.hpp"
 #include "app/simulator/SimulationWriter.hpp"
+#include "engine/config/RelocalisationParams.hpp"
 #include "engine/geometry/PinholeCamera.hpp"
 #include "engine/geometry/TumTrajectory.hpp"
 #include "engine/reference/MultiReferenceMap.hpp"
@@ -178,17 +179,9 @@ TEST_F(PrepareCommandTest, MarkerPosesAndTriangulatedPointsMatchTheSimulatorsGro
 
 TEST_F(PrepareCommandTest, KnownPosesFromATumFileGiveTheSamePoses) {
   const fs::path out = test::freshTempDir("PrepareCommand_poses") / "map";
-  // Without the pose refinement (preparation.refine_poses: false) the given poses are used as
-  // they are.
-  const fs::path params = out.parent_path() / "given.yml";
-  {
-    std::ofstream f(params);
-    f << "preparation:\n  refine_poses: false\n";
-  }
-  const CommandRun run =
-      runReftrack(commonArgs(out) + " --poses " + (*dir_ / "references.txt").string() +
-                      " --params " + params.string(),
-                  out.parent_path());
+  // By default (preparation.refine_given_poses: false) the given poses are used as they are.
+  const CommandRun run = runReftrack(
+      commonArgs(out) + " --poses " + (*dir_ / "references.txt").string(), out.parent_path());
   ASSERT_EQ(run.exitCode, 0) << run.err;
   const ReferenceMap map = MultiReferenceMap::load(out).pair(0, 1);
   // references.txt holds the exact poses at 17 significant digits: only round-off remains.
@@ -196,13 +189,14 @@ TEST_F(PrepareCommandTest, KnownPosesFromATumFileGiveTheSamePoses) {
   EXPECT_LT(RigidPose::rotationDistance(map.T_B, *truthB_), 1e-9);
   EXPECT_GE(map.matches.size(), 300u);
   EXPECT_NE(map.poseSource.find("references.txt"), std::string::npos);
-  // With it (preparation.refine_poses: true, the default), reference 0 stays exactly as given
+  // With preparation.refine_given_poses: true (given poses are kept by default), reference 0
+  // stays exactly as given
   // and B stays within the marker poses' bar of the truth (2 mm, 0.1 deg; measured on the 4 cm
   // and 0.25 m `simulate` pairs with exact poses: 0.07 mm, 0.004 deg and 0.46 mm, 0.015 deg).
   const fs::path refineParams = out.parent_path() / "refine.yml";
   {
     std::ofstream f(refineParams);
-    f << "preparation:\n  refine_poses: true\n";
+    f << "preparation:\n  refine_given_poses: true\n";
   }
   const fs::path refinedOut = out.parent_path() / "refined";
   const CommandRun refined =
@@ -374,7 +368,7 @@ TEST_F(PrepareCommandTest, ThreeReferencesFromAFolderGiveAVersionThreeMap) {
     EXPECT_LT(RigidPose::rotationDistance(T, *truth) * 180.0 / kPi, 0.05) << v;
   }
   // The keypoint layer for relocalisation came through the YAML round trip.
-  EXPECT_EQ(map.keypointKind, "orb");
+  EXPECT_EQ(map.keypointKind, RelocalisationParams{}.keypoints);
   for (const ReferenceView& v : map.views) EXPECT_GT(v.keypoints.pointCount(), 100) << v.name;
   // Depth along A's ray through A's corner against the true surface, for every point A sees;
   // separately for the points seen by 2 and by 3 references.

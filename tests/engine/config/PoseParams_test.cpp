@@ -22,8 +22,10 @@ TEST(PoseParams, DefaultsAndRoundTrip) {
   in.motionModelFile = "model.yml";
   EXPECT_DOUBLE_EQ(in.rollingShutterReadout, 0.0);  // global shutter unless told
   in.rollingShutterReadout = 0.6;
-  EXPECT_TRUE(in.estimateRollingShutter);  // estimated online unless told not to
-  in.estimateRollingShutter = false;
+  EXPECT_FALSE(in.estimateRollingShutter);  // off unless asked for (real clips: README)
+  EXPECT_DOUBLE_EQ(in.mapPointSdScale, 0.5);
+  in.estimateRollingShutter = true;
+  in.mapPointSdScale = 0.0;
   PoseParams out;
   roundTrip(in, out);
   EXPECT_EQ(out.estimator, PoseEstimatorKind::Standard);
@@ -33,7 +35,8 @@ TEST(PoseParams, DefaultsAndRoundTrip) {
   EXPECT_DOUBLE_EQ(out.rotationSigma, 0.003);
   EXPECT_EQ(out.motionModelFile, "model.yml");
   EXPECT_DOUBLE_EQ(out.rollingShutterReadout, 0.6);
-  EXPECT_FALSE(out.estimateRollingShutter);
+  EXPECT_TRUE(out.estimateRollingShutter);
+  EXPECT_DOUBLE_EQ(out.mapPointSdScale, 0.0);
 }
 
 TEST(PoseParams, EveryBadFieldIsNamed) {

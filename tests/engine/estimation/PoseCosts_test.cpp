@@ -95,7 +95,8 @@ TEST(EpipolarDistanceCost, AnalyticJetsMatchNumericDerivatives) {
 TEST(ThreeViewReprojectionCost, ZeroAtTruthAndDerivativesCheck) {
   const Scene s;
   const Eigen::Vector3d P(0.1, 0.2, 1.3);
-  ThreeViewReprojectionCost cost(s.K, P, s.project(s.T_Ak, P), 0.4);
+  ThreeViewReprojectionCost cost(s.K, P, s.project(s.T_Ak, P),
+                                 Eigen::Matrix2d(Eigen::Matrix2d::Identity() / 0.4));
   double r[2];
   cost(s.T_Ak.toVector6().data(), r);
   EXPECT_NEAR(r[0], 0.0, 1e-9);
@@ -119,7 +120,10 @@ TEST(PoseBatchCosts, ResidualsEqualTheFunctorsAndDerivativesCheck) {
     const Eigen::Vector3d P(u(rng), u(rng), z(rng));
     const Eigen::Vector2d pK = s.project(s.T_Ak, P) + Eigen::Vector2d(noise(rng), noise(rng));
     epi.push_back({s.project(s.T_AB, P), pK, 1.0 / (0.3 + 0.1 * i)});
-    tv.push_back({P, pK, 1.0 / (0.2 + 0.05 * i)});
+    // A general whitening (a point's own uncertainty correlates the residual's two axes).
+    Eigen::Matrix2d W;
+    W << 1.0 / (0.2 + 0.05 * i), 0.0, 0.3 * noise(rng), 1.0 / (0.3 + 0.02 * i);
+    tv.push_back({P, pK, W});
   }
   Vector6d nearIdentity = s.T_Ak.toVector6();
   nearIdentity.tail<3>() << 1e-9, -2e-9, 0.0;
@@ -135,7 +139,7 @@ TEST(PoseBatchCosts, ResidualsEqualTheFunctorsAndDerivativesCheck) {
       EpipolarDistanceCost(s.K, refToA, epi[i].pRef, epi[i].pK, 1.0 / epi[i].invSigma)(x.data(), r);
       EXPECT_NEAR(re[2 * i], r[0], 1e-9 * (1 + std::abs(r[0])));
       EXPECT_NEAR(re[2 * i + 1], r[1], 1e-9 * (1 + std::abs(r[1])));
-      ThreeViewReprojectionCost(s.K, tv[i].P, tv[i].pK, 1.0 / tv[i].invSigma)(x.data(), r);
+      ThreeViewReprojectionCost(s.K, tv[i].P, tv[i].pK, tv[i].W)(x.data(), r);
       EXPECT_NEAR(rt[2 * i], r[0], 1e-9 * (1 + std::abs(r[0])));
       EXPECT_NEAR(rt[2 * i + 1], r[1], 1e-9 * (1 + std::abs(r[1])));
     }
@@ -152,7 +156,7 @@ TEST(PoseBatchCosts, ResidualsEqualTheFunctorsAndDerivativesCheck) {
           EpipolarDistanceCost::create(s.K, refToA, epi[i].pRef, epi[i].pK, 1.0 / epi[i].invSigma));
       ASSERT_TRUE(one->Evaluate(params, r, jac));
       for (int k = 0; k < 12; ++k) EXPECT_NEAR(je[12 * i + k], j[k], 1e-8 * (1 + std::abs(j[k])));
-      one.reset(ThreeViewReprojectionCost::create(s.K, tv[i].P, tv[i].pK, 1.0 / tv[i].invSigma));
+      one.reset(ThreeViewReprojectionCost::create(s.K, tv[i].P, tv[i].pK, tv[i].W));
       ASSERT_TRUE(one->Evaluate(params, r, jac));
       for (int k = 0; k < 12; ++k) EXPECT_NEAR(jt[12 * i + k], j[k], 1e-8 * (1 + std::abs(j[k])));
     }

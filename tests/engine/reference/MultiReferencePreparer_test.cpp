@@ -133,7 +133,7 @@ TEST(MultiReferencePreparer, FourKnownPosesGiveMultiViewPointsOnThePlane) {
   // The keypoint layer for relocalisation: every reference has keypoints, and their 3D points lie
   // on the plane (measured: 1180-1453 of 2000 keypoints per reference get a point, 96.8-99.0% of
   // those within 1 cm of the plane; the rest are wrong keypoint matches, for RANSAC to reject).
-  EXPECT_EQ(map.keypointKind, "orb");
+  EXPECT_EQ(map.keypointKind, RelocalisationParams{}.keypoints);
   for (int v = 0; v < map.size(); ++v) {
     const ReferenceKeypoints& k = map.views[static_cast<std::size_t>(v)].keypoints;
     int onPlane = 0;

@@ -62,6 +62,7 @@ TEST(BuildReferenceKeypoints, PointsLieOnTheSceneAndReprojectOntoTheirKeypoints)
   const CornerWorld world;
   MultiReferenceMap map = test::cornerWorldViews(world, 4);
   RelocalisationParams params;
+  params.keypoints = "orb";  // the ORB layer's pyramid levels and quota
   buildReferenceKeypoints(map, params);
   EXPECT_EQ(map.keypointKind, "orb");
   std::vector<double> sceneErrorMm, reprojectionPx;
@@ -125,7 +126,9 @@ namespace {
 TEST(BuildReferenceKeypoints, LayerSurvivesSavingAndLoadingTheMap) {
   const CornerWorld world;
   MultiReferenceMap map = test::cornerWorldViews(world, 3);
-  buildReferenceKeypoints(map, RelocalisationParams{});
+  RelocalisationParams params;
+  params.keypoints = "orb";
+  buildReferenceKeypoints(map, params);
   const auto dir = test::freshTempDir("ReferenceKeypointBuilder_save");
   map.save(dir / "map");
   const MultiReferenceMap loaded = MultiReferenceMap::load(dir / "map");
@@ -139,8 +142,8 @@ TEST(BuildReferenceKeypoints, LayerSurvivesSavingAndLoadingTheMap) {
     EXPECT_EQ(cv::norm(a.descriptors, b.descriptors, cv::NORM_INF), 0.0);
   }
   const cv::Mat frame = world.render(CornerWorld::referencePoses(3, 1.2)[1], 9);
-  const RelocalisationAttempt before = Relocaliser(map, RelocalisationParams{}).locate(frame);
-  const RelocalisationAttempt after = Relocaliser(loaded, RelocalisationParams{}).locate(frame);
+  const RelocalisationAttempt before = Relocaliser(map, params).locate(frame);
+  const RelocalisationAttempt after = Relocaliser(loaded, params).locate(frame);
   ASSERT_TRUE(before.candidate && after.candidate) << before.message << " / " << after.message;
   EXPECT_LT(RigidPose::translationDistance(before.candidate->worldToCamera,
                                            after.candidate->worldToCamera),

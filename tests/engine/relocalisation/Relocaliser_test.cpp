@@ -14,6 +14,14 @@
 namespace reftrack {
 namespace {
 
+// These tests measure the ORB relocaliser on the synthetic corner (its finer pyramid levels are
+// ORB's); the default keypoint kind (SIFT, chosen on real footage) is tested through the trackers.
+RelocalisationParams orb() {
+  RelocalisationParams p;
+  p.keypoints = "orb";
+  return p;
+}
+
 using test::CornerWorld;
 
 // Camera centre to the corner's centre (metres).
@@ -30,7 +38,7 @@ class RelocaliserOnCornerWorld : public ::testing::Test {
   static void SetUpTestSuite() {
     cv::setNumThreads(1);
     world_ = new CornerWorld;
-    map_ = new MultiReferenceMap(test::cornerWorldMap(*world_, kViews, RelocalisationParams{}));
+    map_ = new MultiReferenceMap(test::cornerWorldMap(*world_, kViews, orb()));
   }
   static void TearDownTestSuite() {
     delete map_;
@@ -46,7 +54,7 @@ CornerWorld* RelocaliserOnCornerWorld::world_ = nullptr;
 MultiReferenceMap* RelocaliserOnCornerWorld::map_ = nullptr;
 
 TEST_F(RelocaliserOnCornerWorld, RandomViewsRelocaliseAccuratelyAndNeverWrongly) {
-  const Relocaliser relocaliser(*map_, RelocalisationParams{});
+  const Relocaliser relocaliser(*map_, orb());
   const std::vector<RigidPose> views = test::randomViews(40, kViews, 7);
   std::vector<double> mm, deg, ms;
   int found = 0, wrong = 0;
@@ -87,7 +95,7 @@ TEST_F(RelocaliserOnCornerWorld, RandomViewsRelocaliseAccuratelyAndNeverWrongly)
 }
 
 TEST_F(RelocaliserOnCornerWorld, FramesWithoutTheSceneGiveNoCandidate) {
-  const Relocaliser relocaliser(*map_, RelocalisationParams{});
+  const Relocaliser relocaliser(*map_, orb());
   const cv::Mat black = cv::Mat::zeros(world_->size, CV_8U);
   const RelocalisationAttempt a = relocaliser.locate(black);
   EXPECT_FALSE(a.candidate);
@@ -114,7 +122,7 @@ TEST_F(RelocaliserOnCornerWorld, FramesWithoutTheSceneGiveNoCandidate) {
 }
 
 TEST_F(RelocaliserOnCornerWorld, AcceptsGreyAndBgrAndRefusesOtherSizes) {
-  const Relocaliser relocaliser(*map_, RelocalisationParams{});
+  const Relocaliser relocaliser(*map_, orb());
   const cv::Mat grey = world_->render(map_->views[2].T, 77);
   cv::Mat bgr;
   cv::cvtColor(grey, bgr, cv::COLOR_GRAY2BGR);
@@ -157,7 +165,7 @@ TEST_F(RelocaliserOnCornerWorld, FarViewsRelocaliseWithFinerFrameLevels) {
   }
   int found[2] = {0, 0}, wrong = 0;
   for (int finer : {0, 1}) {
-    RelocalisationParams params;
+    RelocalisationParams params = orb();
     params.frameFinerLevels = finer ? 3 : 0;
     const Relocaliser relocaliser(*map_, params);
     for (std::size_t i = 0; i < views.size(); ++i) {
@@ -187,7 +195,7 @@ TEST_F(RelocaliserOnCornerWorld, RefusesMapsWithoutAMatchingKeypointLayer) {
   EXPECT_THROW(Relocaliser(*map_, akaze), Error);  // the layer holds ORB descriptors
   MultiReferenceMap bare = *map_;
   for (ReferenceView& v : bare.views) v.keypoints = ReferenceKeypoints{};
-  EXPECT_THROW(Relocaliser(bare, RelocalisationParams{}), Error);
+  EXPECT_THROW(Relocaliser(bare, orb()), Error);
 }
 
 }  // namespace

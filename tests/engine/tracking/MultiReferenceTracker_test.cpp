@@ -241,12 +241,12 @@ TEST(MultiReferenceTracker, RelocalisesAfterBlackFramesOnTheFirstClearFrame) {
     // The first black frame only loses tracking; the six after it try to recover.
     EXPECT_EQ(blackAttempts, every == 1 ? 6 : 2) << every;
     EXPECT_EQ(tracker.relocalisationAttempts() - attemptsBefore, blackAttempts);
-    // The clear frame after them is due for an attempt with every = 1 (and with 3: the black
-    // frames' last attempt was two frames before) and relocalises.
+    // The clear frame after them gets its pose at once: this view is near the references, so the
+    // paper's start (tried first on every frame) finds it before an attempt is needed.
     const RigidPose truth = PlaneMultiWorld::cameraAlong(-0.1 + 0.01 * k, k);
     const MultiReferenceResult r = tracker.process(world.render(truth, 600 + k));
     ASSERT_EQ(r.tracking.state, TrackingState::Tracking) << every << ": " << r.tracking.message;
-    EXPECT_TRUE(r.relocalisation.succeeded);
+    EXPECT_TRUE(r.relocalisation.succeeded || !r.relocalisation.attempted) << r.tracking.message;
     EXPECT_LT(translationErrorMm(*r.tracking.worldToCamera, world.worldToCamera(truth)), 2.0);
     EXPECT_LT(rotationErrorDeg(*r.tracking.worldToCamera, world.worldToCamera(truth)), 0.1);
   }

@@ -1,7 +1,17 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <opencv2/imgcodecs.hpp>
+#include <sstream>
+#include <tuple>
+
 #include "TestPaths.hpp"
 #include "app/commands/CommandTestSupport.hpp"
+#include "engine/geometry/PinholeCamera.hpp"
+#include "engine/geometry/TumTrajectory.hpp"
 
 using namespace reftrack::test;
 
@@ -29,4 +39,188 @@ TEST(BenchRealCommand, MissingClipIsAClearErrorAndBadReferencesAUsageError) {
   EXPECT_EQ(runReftrack("bench-real --references 5", dir).exitCode, 2);
   EXPECT_EQ(runReftrack("bench-real --references 5,5", dir).exitCode, 2);
   EXPECT_EQ(runReftrack("bench-real --target 1,2,3", dir).exitCode, 2);
+}
+
+namespace {
+
+// The rows of the table `bench-real --input` prints: method, order -> the numbers after them.
+std::map<std::string, std::vector<std::string>> tableRows(const std::string& out) {
+  std::map<std::string, std::vector<std::string>> rows;
+  std::istringstream in(out);
+  bool inTable = false;
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("method ", 0) == 0) {
+      inTable = true;
+      continue;
+    }
+    if (!inTable) continue;
+    std::istringstream fields(line);
+    std::string method, order;
+    fields >> method >> order;
+    if (order != "sequence" && order != "shuffled") break;
+    std::vector<std::string> numbers;
+    for (std::string f; fields >> f;) numbers.push_back(f);
+    rows[method + " " + order] = numbers;
+  }
+  return rows;
+}
+
+// The per-frame errors of one CSV column (NaN where empty), and the true_pose column.
+std::vector<double> csvColumn(const std::filesystem::path& csv, const std::string& name) {
+  std::ifstream in(csv);
+  std::string header;
+  std::getline(in, header);
+  std::vector<std::string> names;
+  std::istringstream h(header);
+  for (std::string n; std::getline(h, n, ',');) names.push_back(n);
+  const auto at = std::find(names.begin(), names.end(), name);
+  if (at == names.end()) return {};
+  const std::size_t column = static_cast<std::size_t>(at - names.begin());
+  std::vector<double> values;
+  for (std::string line; std::getline(in, line);) {
+    std::vector<std::string> cells;
+    std::istringstream l(line);
+    for (std::string c; std::getline(l, c, ',');) cells.push_back(c);
+    values.push_back(column < cells.size() && !cells[column].empty() ? std::stod(cells[column])
+                                                                     : NAN);
+  }
+  return values;
+}
+
+}  // namespace
+
+// The real desk clip (../shared/data/desk-chessboard), its first 20 frames (reading 41 for
+// reference 40; all 400 take minutes), references 0 and 40 with their true poses: the table has
+// every method in both orders, the files are written, and the per-frame OpenCV peers are working
+// pipelines here. Measured on these frames: SIFT 20/20 posed, cube error mean 0.30 px, max 0.53;
+// AKAZE 20/20, 0.16, max 0.24; ORB 20/20, 0.37, max 0.78 (over the first 60: 0.56 / 1.22,
+// 0.24 / 0.42, 0.77 / 3.59; the several-pixel errors come later in the clip). Bounds:
+// every frame posed by SIFT and AKAZE, at least 18 by ORB, mean below 1 px (1.5 for ORB) and none
+// more than 5 px off: about 3x the measured means, while a broken pipeline (wrong references,
+// distortion ignored, the wrong frame's truth) is pixels off or loses frames. reftrack's numbers
+// are not bounded here (the engine is being changed; its own real-data tests hold its targets).
+TEST(BenchRealCommand, DeskClipTableFilesAndPlausiblePeers) {
+  const auto data = sharedDataDir();
+  const auto desk = data ? *data / "desk-chessboard" : std::filesystem::path();
+  if (!data || !std::filesystem::is_directory(desk / "frames"))
+    GTEST_SKIP() << "../shared/data/desk-chessboard not available (the shared real recordings)";
+  const auto dir = freshTempDir("BenchRealCommandDesk");
+  const auto r = runReftrack("bench-real --input " + (desk / "frames").string() + " --camera " +
+                                 (desk / "camera.yml").string() + " --gt " +
+                                 (desk / "groundtruth.txt").string() +
+                                 " --ref-frames 0,40 --cube-centre 0.16,-0.10,0 --cube-edge 0.1"
+                                 " --frames 20 --out " +
+                                 (dir / "out").string(),
+                             dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto rows = tableRows(r.out);
+  for (const char* method : {"reftrack", "SIFT+PnP", "AKAZE+PnP", "ORB+PnP", "ORB+PnP+Kalman"})
+    for (const char* order : {"sequence", "shuffled"}) {
+      const std::string key = std::string(method) + " " + order;
+      ASSERT_EQ(rows.count(key), 1u) << key << "\n" << r.out;
+      const std::vector<std::string>& row = rows.at(key);
+      ASSERT_EQ(row.size(), 10u) << key;  // frames posed cover% mean p95 max >5 <=1.5 cpu cpu_x
+      EXPECT_EQ(row[0], "20") << key;
+    }
+  EXPECT_NE(r.out.find("references: frames 0 (0.0 mm from the first) 40 ("), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("reftrack map: "), std::string::npos);
+  EXPECT_NE(r.out.find("peers' triangulated points: SIFT+PnP "), std::string::npos);
+  EXPECT_NE(r.out.find("wrote the table " + (dir / "out" / "table.txt").string()),
+            std::string::npos)
+      << r.out;
+  EXPECT_TRUE(std::filesystem::is_regular_file(dir / "out" / "cube_errors.png"));
+  const auto csv = dir / "out" / "cube_errors.csv";
+  for (const auto& [column, minPosed, maxMean] :
+       {std::tuple{"sift_pnp_sequence_px", 20, 1.0}, std::tuple{"akaze_pnp_sequence_px", 20, 1.0},
+        std::tuple{"orb_pnp_sequence_px", 18, 1.5}}) {
+    const std::vector<double> e = csvColumn(csv, column);
+    ASSERT_EQ(e.size(), 20u) << column;
+    int posed = 0;
+    double sum = 0, worst = 0;
+    for (double v : e)
+      if (!std::isnan(v)) ++posed, sum += v, worst = std::max(worst, v);
+    EXPECT_GE(posed, minPosed) << column;
+    ASSERT_GT(posed, 0) << column;
+    EXPECT_LT(sum / posed, maxMean) << column;
+    EXPECT_LE(worst, 5.0) << column;
+    // The shuffled run is the same per-frame pipeline: the same errors frame by frame.
+    std::string shuffled = column;
+    shuffled.replace(shuffled.find("sequence"), 8, "shuffled");
+    const std::vector<double> s = csvColumn(csv, shuffled);
+    ASSERT_EQ(s.size(), 20u);
+    for (std::size_t k = 0; k < 20; ++k)
+      if (!std::isnan(e[k]) || !std::isnan(s[k])) {
+        EXPECT_NEAR(e[k], s[k], 1e-6) << column << k;
+      }
+  }
+}
+
+namespace {
+
+// A folder of `count` noise frames of `size`, a camera file for `cameraSize` and a ground truth
+// for frames 0 .. truthFrames-1 (at k / 30 s).
+struct SmallRecording {
+  std::filesystem::path dir, frames, camera, gt;
+  SmallRecording(const std::string& name, cv::Size size, cv::Size cameraSize, int truthFrames) {
+    dir = freshTempDir(name);
+    frames = dir / "frames";
+    std::filesystem::create_directories(frames);
+    cv::RNG rng(3);
+    for (int k = 0; k < 3; ++k) {
+      cv::Mat image(size, CV_8UC3);
+      rng.fill(image, cv::RNG::UNIFORM, 0, 255);
+      cv::imwrite((frames / ("00000" + std::to_string(k) + ".png")).string(), image);
+    }
+    Eigen::Matrix3d K;
+    K << 200, 0, 0.5 * (cameraSize.width - 1), 0, 200, 0.5 * (cameraSize.height - 1), 0, 0, 1;
+    camera = dir / "camera.yml";
+    reftrack::PinholeCamera(K, cameraSize).save(camera);
+    reftrack::TumTrajectory t;
+    for (int k = 0; k < truthFrames; ++k)
+      t.poses.push_back({k / 30.0, reftrack::RigidPose(Eigen::Matrix3d::Identity(),
+                                                       Eigen::Vector3d(0.01 * k, 0, 1))});
+    gt = dir / "groundtruth.txt";
+    t.save(gt);
+  }
+  std::string args(const std::string& refFrames = "0,2") const {
+    return "bench-real --input " + frames.string() + " --camera " + camera.string() + " --gt " +
+           gt.string() + " --ref-frames " + refFrames + " --out " + (dir / "out").string();
+  }
+};
+
+}  // namespace
+
+// Bad input: a clear message, a non-zero exit and no output folder.
+TEST(BenchRealCommand, InputModeBadInputIsAClearErrorWithNoOutputs) {
+  const SmallRecording ok("BenchRealCommandBadInput", {160, 120}, {160, 120}, 3);
+  auto expectError = [&](const std::string& args, int exitCode, const std::string& message) {
+    const auto r = runReftrack(args, ok.dir);
+    EXPECT_EQ(r.exitCode, exitCode) << args << "\n" << r.err;
+    EXPECT_NE(r.err.find(message), std::string::npos) << args << "\n" << r.err;
+    EXPECT_FALSE(std::filesystem::exists(ok.dir / "out")) << args;
+  };
+  std::string args = ok.args();
+  expectError(std::string(args).replace(args.find(ok.frames.string()), ok.frames.string().size(),
+                                        (ok.dir / "none").string()),
+              1, "none' not found");
+  expectError(std::string(args).replace(args.find(ok.camera.string()), ok.camera.string().size(),
+                                        (ok.dir / "none.yml").string()),
+              1, "camera file '" + (ok.dir / "none.yml").string() + "' not found");
+  expectError(std::string(args).replace(args.find(ok.gt.string()), ok.gt.string().size(),
+                                        (ok.dir / "none.txt").string()),
+              1, "ground-truth file '" + (ok.dir / "none.txt").string() + "' not found");
+  const SmallRecording shortTruth("BenchRealCommandShortTruth", {160, 120}, {160, 120}, 2);
+  expectError(shortTruth.args(), 1, "reference frame 2 has no ground-truth pose");
+  EXPECT_FALSE(std::filesystem::exists(shortTruth.dir / "out"));
+  const SmallRecording wrongSize("BenchRealCommandWrongSize", {160, 120}, {320, 240}, 3);
+  expectError(wrongSize.args(), 1, "is 160x120 but camera file");
+  EXPECT_FALSE(std::filesystem::exists(wrongSize.dir / "out"));
+  // Usage errors (exit 2), before anything is read.
+  expectError(ok.args("3"), 2, "at least two");
+  expectError(ok.args("2,2"), 2, "given twice");
+  expectError(ok.args() + " --clip card.mp4", 2, "excludes");
+  expectError(ok.args() + " --methods reftrack,surf", 2, "unknown method 'surf'");
+  expectError("bench-real --input " + ok.frames.string() + " --camera " + ok.camera.string(), 2,
+              "--ref-frames");
 }

@@ -25,10 +25,19 @@ SimulationOptions walkaroundOneFrame() {
 
 // The walkaround's six references and their prepared map, drawn from by the experiments below
 // (declaration order is construction order: the GL context first).
+// Issue 13's experiment with its ORB relocaliser (the product's default keypoints are SIFT since
+// issue 24, chosen on real footage and tested there: MultiReferenceTrackerRealFootage_test; SIFT
+// made this test 3x slower for the same rates).
+TrackerParams orbRelocalisation() {
+  TrackerParams p;
+  p.relocalisation.keypoints = "orb";
+  return p;
+}
+
 struct WalkaroundSixReferences {
   std::unique_ptr<render::GlContext> gl = render::createHeadlessContext();
   SceneSimulator sim{walkaroundOneFrame()};
-  TrackerParams params;
+  TrackerParams params = orbRelocalisation();
   MultiReferenceMap map = prepareSimulatedReferences(sim, 6, {}, params.relocalisation);
 };
 
@@ -116,16 +125,23 @@ TEST(RelocalisationExperiment, ColdStartAndKidnappedCameraOnSmallSamples) {
             << r.medianRelocaliseMs() << " ms wall, " << r.medianRelocaliseCpuMs()
             << " ms CPU); kidnapped " << kidnap.good << "/" << kidnap.trials << ", " << kidnap.wrong
             << " wrong\n";
-  // Every cold start is a fresh tracker: its first frame is a relocalisation attempt, timed, and
-  // a frame without a pose says why.
+  // Every cold start is a fresh tracker: its first frame tries the paper's start near a reference,
+  // then (when that fails) a relocalisation attempt, timed; a frame without either was posed by
+  // the start, and a frame without a pose says why.
+  int attempts = 0;
   for (const ColdStartTrial& t : r.coldStarts) {
-    EXPECT_GE(t.relocaliseMs, 0.0);
-    EXPECT_GE(t.relocaliseCpuMs, 0.0);
-    EXPECT_LE(t.relocaliseCpuMs, t.relocaliseMs + 0.1);
+    if (t.relocaliseMs >= 0.0) {
+      ++attempts;
+      EXPECT_GE(t.relocaliseCpuMs, 0.0);
+      EXPECT_LE(t.relocaliseCpuMs, t.relocaliseMs + 0.1);
+    } else {
+      EXPECT_TRUE(t.posed) << t.trackerMessage;
+    }
     if (!t.posed) {
       EXPECT_FALSE(t.trackerMessage.empty());
     }
   }
+  EXPECT_GT(attempts, 0);
   EXPECT_GE(cold.good, 17);
   EXPECT_EQ(cold.wrong, 0);
   EXPECT_GE(kidnap.good, 8);

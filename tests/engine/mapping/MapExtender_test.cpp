@@ -1,4 +1,4 @@
-#include "engine/reference/MapExtender.hpp"
+#include "engine/mapping/MapExtender.hpp"
 
 #include <gtest/gtest.h>
 

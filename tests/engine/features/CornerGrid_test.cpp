@@ -1,4 +1,4 @@
-#include "engine/tracking/CornerGrid.hpp"
+#include "engine/features/CornerGrid.hpp"
 
 #include <gtest/gtest.h>
 

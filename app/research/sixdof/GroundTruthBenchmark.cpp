@@ -1,0 +1,325 @@
+#include "app/research/sixdof/GroundTruthBenchmark.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <numeric>
+#include <random>
+#include <set>
+
+#include "app/research/baselines/OrbPnpKalmanTracker.hpp"
+#include "app/research/baselines/PerFramePnpPeer.hpp"
+#include "app/research/sixdof/RealFootageBenchmark.hpp"
+#include "engine/core/Error.hpp"
+#include "engine/core/ThreadCpuClock.hpp"
+#include "engine/evaluation/TrajectoryEvaluator.hpp"
+#include "engine/reference/MultiReferencePreparer.hpp"
+#include "engine/tracking/MultiReferenceTracker.hpp"
+
+namespace reftrack::app {
+
+const std::vector<std::string>& groundTruthBenchmarkMethods() {
+  static const std::vector<std::string> methods = {"reftrack", "sift", "akaze", "orb", "kalman"};
+  return methods;
+}
+
+void GroundTruthBenchmarkOptions::check() const {
+  if (references.size() < 2)
+    throw Error("bench-real: --ref-frames needs at least two frames, got " +
+                std::to_string(references.size()));
+  std::set<int> seen;
+  for (int r : references) {
+    if (r < 0) throw Error("bench-real: --ref-frames: frame " + std::to_string(r) + " is < 0");
+    if (!seen.insert(r).second)
+      throw Error("bench-real: --ref-frames: frame " + std::to_string(r) + " given twice");
+  }
+  if (!cubeCentre.allFinite()) throw Error("bench-real: --cube-centre must be finite");
+  if (!(cubeEdge > 0) || !std::isfinite(cubeEdge))
+    throw Error("bench-real: --cube-edge must be > 0 m");
+  if (frames < 0) throw Error("bench-real: --frames must be >= 0 (0: every frame)");
+  if (passes < 1) throw Error("bench-real: --passes must be >= 1");
+  if (methods.empty()) throw Error("bench-real: --methods names no method");
+  const std::vector<std::string>& known = groundTruthBenchmarkMethods();
+  std::set<std::string> named;
+  for (const std::string& m : methods) {
+    if (std::find(known.begin(), known.end(), m) == known.end())
+      throw Error("bench-real: --methods: unknown method '" + m +
+                  "' (known: reftrack, sift, akaze, orb, kalman)");
+    if (!named.insert(m).second) throw Error("bench-real: --methods: '" + m + "' given twice");
+  }
+}
+
+MethodSummary summarise(const MethodRun& run, const std::vector<bool>& truth) {
+  MethodSummary s;
+  std::vector<double> errors;
+  for (std::size_t k = 0; k < truth.size() && k < run.errorPx.size(); ++k) {
+    if (!truth[k]) continue;
+    ++s.frames;
+    const double e = run.errorPx[k];
+    if (std::isnan(e)) continue;
+    ++s.posed;
+    s.wrong += e > kWrongPosePx ? 1 : 0;
+    s.good += e <= kGoodPosePx ? 1 : 0;
+    if (std::isinf(e))
+      ++s.behind;
+    else
+      errors.push_back(e);
+  }
+  if (!errors.empty()) {
+    s.meanPx =
+        std::accumulate(errors.begin(), errors.end(), 0.0) / static_cast<double>(errors.size());
+    s.p95Px = percentileOf(errors, 0.95);
+    s.maxPx = *std::max_element(errors.begin(), errors.end());
+  }
+  s.cpuMedianMs = percentileOf(run.cpuMs, 0.5);
+  return s;
+}
+
+std::vector<Eigen::Vector3d> cubeOn(const Eigen::Vector3d& baseCentre, double edge) {
+  std::vector<Eigen::Vector3d> cube = cubeVertices(edge);
+  for (Eigen::Vector3d& v : cube) v += baseCentre;
+  return cube;
+}
+
+double cubeErrorPx(const PinholeCamera& camera, const std::vector<Eigen::Vector3d>& cube,
+                   const RigidPose& truth, const RigidPose& estimate) {
+  double sum = 0.0;
+  int n = 0;
+  for (const Eigen::Vector3d& X : cube) {
+    const Eigen::Vector3d a = truth * X, b = estimate * X;
+    if (!(a.z() > 0) || !(b.z() > 0)) continue;  // behind a camera: no image position
+    sum += (camera.project(a) - camera.project(b)).norm();
+    ++n;
+  }
+  return n > 0 ? sum / n : INFINITY;
+}
+
+namespace {
+
+// One method behind a common face: a pose for a frame (or the reason there is none), a cold
+// start, and a fresh state for a new run.
+class PoseMethod {
+ public:
+  virtual ~PoseMethod() = default;
+  virtual std::string name() const = 0;
+  virtual void startRun() = 0;   // before a run over the frames (outside the timing)
+  virtual void coldStart() = 0;  // before each frame of the shuffled order (outside the timing)
+  // The world->camera pose of `frame`, or nullopt with `reason` set.
+  virtual std::optional<RigidPose> locate(const cv::Mat& frame, std::string& reason) = 0;
+};
+
+class ReftrackMethod final : public PoseMethod {
+ public:
+  ReftrackMethod(const MultiReferenceMap& map, const TrackerParams& params)
+      : map_(map), params_(params) {}
+  std::string name() const override { return "reftrack"; }
+  void startRun() override { tracker_ = std::make_unique<MultiReferenceTracker>(map_, params_); }
+  void coldStart() override { tracker_->reset(); }
+  std::optional<RigidPose> locate(const cv::Mat& frame, std::string& reason) override {
+    const PoseTrackingResult r = tracker_->process(frame).tracking;
+    if (r.state == TrackingState::Tracking && r.worldToCamera) return r.worldToCamera;
+    reason = r.message.substr(0, r.message.find(" ("));
+    if (reason.empty()) reason = toString(r.state);
+    return std::nullopt;
+  }
+
+ private:
+  const MultiReferenceMap& map_;
+  TrackerParams params_;
+  std::unique_ptr<MultiReferenceTracker> tracker_;
+};
+
+class PeerMethod final : public PoseMethod {
+ public:
+  PeerMethod(const std::string& detector, const GroundTruthSequence& s,
+             const std::vector<int>& references)
+      : peer_(detector, s.camera, imagesOf(s, references), posesOf(s, references)) {
+    for (char c : detector) name_ += static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    name_ += "+PnP";
+  }
+  std::string name() const override { return name_; }
+  void startRun() override {}
+  void coldStart() override {}
+  std::optional<RigidPose> locate(const cv::Mat& frame, std::string& reason) override {
+    const PerFramePnpResult r = peer_.locate(frame);
+    if (!r.worldToCamera)
+      reason =
+          r.matches < peer_.params().minInliers ? "too few 2D-3D matches" : "too few PnP inliers";
+    return r.worldToCamera;
+  }
+  int modelPoints() const { return peer_.modelPoints(); }
+
+  static std::vector<cv::Mat> imagesOf(const GroundTruthSequence& s, const std::vector<int>& refs) {
+    std::vector<cv::Mat> images;
+    for (int r : refs) images.push_back(s.frames[static_cast<std::size_t>(r)]);
+    return images;
+  }
+  static std::vector<RigidPose> posesOf(const GroundTruthSequence& s,
+                                        const std::vector<int>& refs) {
+    std::vector<RigidPose> poses;
+    for (int r : refs) poses.push_back(*s.truth[static_cast<std::size_t>(r)]);
+    return poses;
+  }
+
+ private:
+  PerFramePnpPeer peer_;
+  std::string name_;
+};
+
+class KalmanMethod final : public PoseMethod {
+ public:
+  KalmanMethod(ReferenceMap pair, double fps) : pair_(std::move(pair)) {
+    params_.dt = 1.0 / fps;
+    startRun();
+  }
+  std::string name() const override { return "ORB+PnP+Kalman"; }
+  void startRun() override { tracker_ = std::make_unique<OrbPnpKalmanTracker>(pair_, params_); }
+  void coldStart() override { tracker_->reset(); }
+  std::optional<RigidPose> locate(const cv::Mat& frame, std::string& reason) override {
+    std::optional<RigidPose> pose = tracker_->process(frame);
+    if (!pose) reason = "no PnP pose with enough inliers yet";
+    return pose;
+  }
+  int modelPoints() const { return tracker_->modelPoints(); }
+
+ private:
+  ReferenceMap pair_;
+  OrbPnpKalmanParams params_;
+  std::unique_ptr<OrbPnpKalmanTracker> tracker_;
+};
+
+// The sequence's nominal frame rate from its timestamps (30 when they do not tell).
+double frameRate(const std::vector<double>& timestamps) {
+  if (timestamps.size() < 2) return 30.0;
+  const double span = timestamps.back() - timestamps.front();
+  const double fps = static_cast<double>(timestamps.size() - 1) / span;
+  return std::isfinite(fps) && fps > 0 ? fps : 30.0;
+}
+
+}  // namespace
+
+GroundTruthBenchmarkResult runGroundTruthBenchmark(const GroundTruthSequence& s,
+                                                   const GroundTruthBenchmarkOptions& o,
+                                                   const TrackerParams& params,
+                                                   const ReferencePreparerParams& prepareParams,
+                                                   const BenchmarkProgress& progress) {
+  o.check();
+  const auto start = std::chrono::steady_clock::now();
+  const int available = static_cast<int>(s.frames.size());
+  if (o.frames > available)
+    throw Error("bench-real: --frames " + std::to_string(o.frames) + " but " + s.framesDescription +
+                " holds " + std::to_string(available) + " frames");
+  for (int r : o.references) {
+    if (r >= available)
+      throw Error("bench-real: reference frame " + std::to_string(r) + " is beyond the " +
+                  std::to_string(available) + " frames of " + s.framesDescription);
+    if (!s.truth[static_cast<std::size_t>(r)])
+      throw Error("bench-real: reference frame " + std::to_string(r) +
+                  " has no ground-truth pose (" + s.groundTruthDescription + ")");
+  }
+  GroundTruthBenchmarkResult result;
+  result.framesDescription = s.framesDescription;
+  result.groundTruthDescription = s.groundTruthDescription;
+  result.frameSize = s.camera.imageSize();
+  result.frames = o.frames > 0 ? o.frames : available;
+  for (int k = 0; k < result.frames; ++k)
+    result.truth.push_back(s.truth[static_cast<std::size_t>(k)].has_value());
+  result.references = o.references;
+  result.cubeCentre = o.cubeCentre;
+  result.cubeEdge = o.cubeEdge;
+  result.shuffleSeed = o.shuffleSeed;
+  result.passes = o.passes;
+
+  // The map, as `prepare --input --ref-frames --poses` makes it.
+  std::vector<ReferenceImage> images;
+  std::vector<RigidPose> poses;
+  for (int r : o.references) {
+    const RigidPose& T = *s.truth[static_cast<std::size_t>(r)];
+    images.push_back({s.frames[static_cast<std::size_t>(r)], "frame " + std::to_string(r)});
+    poses.push_back(T);
+    result.referenceDistancesMm.push_back(1000.0 *
+                                          (T.cameraCentre() - poses.front().cameraCentre()).norm());
+  }
+  const MultiPreparation prepared = MultiReferencePreparer(s.camera, prepareParams)
+                                        .prepare(images, poses, "ground truth of bench-real");
+  result.mapPoints = static_cast<int>(prepared.map.points.size());
+  for (const ReferenceView& v : prepared.map.views) {
+    result.mapKeypoints += static_cast<int>(v.keypoints.keypoints.size());
+    result.mapKeypointPoints += v.keypoints.pointCount();
+  }
+
+  std::vector<std::unique_ptr<PoseMethod>> methods;
+  for (const std::string& name : groundTruthBenchmarkMethods()) {
+    if (std::find(o.methods.begin(), o.methods.end(), name) == o.methods.end()) continue;
+    if (name == "reftrack") {
+      methods.push_back(std::make_unique<ReftrackMethod>(prepared.map, params));
+    } else if (name == "kalman") {
+      auto kalman =
+          std::make_unique<KalmanMethod>(prepared.map.pair(0, 1), frameRate(s.timestamps));
+      result.modelPoints.emplace_back(kalman->name(), kalman->modelPoints());
+      methods.push_back(std::move(kalman));
+    } else {
+      auto peer = std::make_unique<PeerMethod>(name, s, o.references);
+      result.modelPoints.emplace_back(peer->name(), peer->modelPoints());
+      methods.push_back(std::move(peer));
+    }
+  }
+
+  std::vector<int> sequence(static_cast<std::size_t>(result.frames));
+  std::iota(sequence.begin(), sequence.end(), 0);
+  std::vector<int> shuffled = sequence;
+  std::mt19937_64 rng(o.shuffleSeed);
+  std::shuffle(shuffled.begin(), shuffled.end(), rng);
+  const std::vector<Eigen::Vector3d> cube = cubeOn(o.cubeCentre, o.cubeEdge);
+
+  for (const auto& method : methods)
+    for (bool cold : {false, true}) {
+      MethodRun run;
+      run.method = method->name();
+      run.shuffled = cold;
+      run.errorPx.assign(static_cast<std::size_t>(result.frames), NAN);
+      run.poses.resize(static_cast<std::size_t>(result.frames));
+      result.runs.push_back(std::move(run));
+    }
+  // Each pass runs every method in turn, in both orders, so all see the same machine load.
+  for (int pass = 0; pass < o.passes; ++pass)
+    for (std::size_t m = 0; m < methods.size(); ++m)
+      for (bool cold : {false, true}) {
+        PoseMethod& method = *methods[m];
+        MethodRun& run = result.runs[2 * m + (cold ? 1 : 0)];
+        const auto runStart = std::chrono::steady_clock::now();
+        method.startRun();
+        for (int k : cold ? shuffled : sequence) {
+          if (cold) method.coldStart();
+          const cv::Mat& frame = s.frames[static_cast<std::size_t>(k)];
+          std::string reason;
+          const double cpu0 = threadCpuMs();
+          const std::optional<RigidPose> pose = method.locate(frame, reason);
+          run.cpuMs.push_back(threadCpuMs() - cpu0);
+          if (pass > 0) continue;
+          run.poses[static_cast<std::size_t>(k)] = pose;
+          const auto& truth = s.truth[static_cast<std::size_t>(k)];
+          if (!truth) continue;
+          if (pose)
+            run.errorPx[static_cast<std::size_t>(k)] = cubeErrorPx(s.camera, cube, *truth, *pose);
+          else
+            ++run.noPose[reason];
+        }
+        if (progress) {
+          const double seconds =
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - runStart).count();
+          char line[256];
+          std::snprintf(line, sizeof line, "pass %d/%d: %s, %s order: %d frames in %.1f s",
+                        pass + 1, o.passes, method.name().c_str(), cold ? "shuffled" : "sequence",
+                        result.frames, seconds);
+          progress(line);
+        }
+      }
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace reftrack::app

@@ -1,0 +1,113 @@
+#pragma once
+// GroundTruthBenchmark (`bench-real --input`): the 6-DOF tracker and its peers on any recording
+// with a true camera pose per frame (GroundTruthSequence). A map is prepared from the reference
+// frames with their true poses (MultiReferencePreparer, as `prepare --input --ref-frames --poses`
+// does); then every method gives a pose per frame twice, in sequence order and in a shuffled
+// order where every frame is a cold start (the tracker reset() before each frame, the Kalman
+// filter restarted; the per-frame peers keep nothing anyway). Methods: reftrack
+// (MultiReferenceTracker), SIFT / AKAZE / ORB + solvePnPRansac + solvePnPRefineLM from the same
+// reference frames (PerFramePnpPeer), and ORB + PnP + Kalman (OrbPnpKalmanTracker on the first
+// two references). Score: a cube standing on the world's z = 0 plane (its base centred at
+// cubeCentre, extending to +z) projected with K alone (ideal pinhole): the mean pixel distance of
+// its 8 vertices between the estimated and the true pose. Speed: the thread CPU time of each
+// frame, every pass (the caller sets cv::setNumThreads(1)).
+#include <Eigen/Core>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <opencv2/core.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "app/research/sixdof/GroundTruthSequence.hpp"
+#include "engine/config/TrackerParams.hpp"
+#include "engine/reference/ReferencePreparer.hpp"
+
+namespace reftrack::app {
+
+// Poses farther off than this are wrong (they draw the content in the wrong place) ...
+inline constexpr double kWrongPosePx = 5.0;
+// ... and poses within this are good (the shuffled-frames target).
+inline constexpr double kGoodPosePx = 1.5;
+
+// The methods, by their `--methods` names, in table order.
+const std::vector<std::string>& groundTruthBenchmarkMethods();  // reftrack sift akaze orb kalman
+
+struct GroundTruthBenchmarkOptions {
+  std::vector<int> references;  // frame indices of the reference images (>= 2, distinct)
+  Eigen::Vector3d cubeCentre = Eigen::Vector3d::Zero();  // centre of the cube's base (world, m)
+  double cubeEdge = 0.1;                                 // metres
+  int frames = 0;  // frames benchmarked from the start; 0: every frame of the sequence
+  int passes = 1;  // passes over the frames for the timing (errors from the first)
+  std::uint64_t shuffleSeed = 1;
+  std::vector<std::string> methods = groundTruthBenchmarkMethods();
+
+  // Throws reftrack::Error naming the bad option (before anything is read).
+  void check() const;
+};
+
+// One method over the frames in one order.
+struct MethodRun {
+  std::string method;     // its name in the table, e.g. "SIFT+PnP"
+  bool shuffled = false;  // shuffled order, every frame a cold start
+  // Per frame index (not processing order), first pass: the cube error, NaN without a pose;
+  // frames without a true pose are NaN too.
+  std::vector<double> errorPx;
+  std::vector<std::optional<RigidPose>> poses;  // per frame index, first pass: world->camera
+  std::vector<double> cpuMs;                    // every processed frame, every pass
+  std::map<std::string, int> noPose;  // reason -> frames with a true pose but none estimated
+};
+
+struct MethodSummary {
+  int frames = 0;  // frames with a true pose
+  int posed = 0;   // ... of them given a pose
+  // Over the posed frames with a finite error (NaN when none).
+  double meanPx = NAN, p95Px = NAN, maxPx = NAN;
+  int behind = 0;  // posed frames whose pose put the whole cube behind the camera (infinite error)
+  int wrong = 0;   // posed frames more than kWrongPosePx off (those behind included)
+  int good = 0;    // posed frames within kGoodPosePx
+  double cpuMedianMs = NAN;  // median thread CPU per processed frame
+  double coveragePercent() const { return frames > 0 ? 100.0 * posed / frames : 0.0; }
+};
+
+// `truth[k]`: frame k has a true pose (frames without one are not scored).
+MethodSummary summarise(const MethodRun& run, const std::vector<bool>& truth);
+
+struct GroundTruthBenchmarkResult {
+  std::string framesDescription, groundTruthDescription;
+  cv::Size frameSize;
+  int frames = 0;           // benchmarked (the first `frames` of the sequence)
+  std::vector<bool> truth;  // per benchmarked frame: has a true pose
+  std::vector<int> references;
+  std::vector<double> referenceDistancesMm;  // camera centre of reference i from reference 0's
+  Eigen::Vector3d cubeCentre = Eigen::Vector3d::Zero();
+  double cubeEdge = 0.0;
+  std::uint64_t shuffleSeed = 0;
+  int passes = 0;
+  int mapPoints = 0, mapKeypoints = 0, mapKeypointPoints = 0;  // reftrack's map
+  std::vector<std::pair<std::string, int>> modelPoints;  // peers' triangulated points, by method
+  std::vector<MethodRun> runs;  // per method in table order: sequence, then shuffled
+  double seconds = 0.0;         // wall time of the preparation and every run
+};
+
+// Progress lines (one per method and order) for the caller to print.
+using BenchmarkProgress = std::function<void(const std::string&)>;
+
+// The mean pixel distance of the cube's vertices between `estimate` and `truth` (world->camera),
+// projected with K alone; vertices behind either camera are left out, and a pose that leaves
+// none in front of both is infinitely wrong.
+double cubeErrorPx(const PinholeCamera& camera, const std::vector<Eigen::Vector3d>& cube,
+                   const RigidPose& truth, const RigidPose& estimate);
+// The 8 vertices of the cube of `edge` whose base is centred at `baseCentre` on z = 0, up to +z.
+std::vector<Eigen::Vector3d> cubeOn(const Eigen::Vector3d& baseCentre, double edge);
+
+// Throws reftrack::Error when a reference frame is beyond the sequence or has no true pose, when
+// options.frames exceeds the sequence, or when the preparation or a peer's model fails.
+GroundTruthBenchmarkResult runGroundTruthBenchmark(const GroundTruthSequence& sequence,
+                                                   const GroundTruthBenchmarkOptions& options,
+                                                   const TrackerParams& params,
+                                                   const ReferencePreparerParams& prepareParams,
+                                                   const BenchmarkProgress& progress = {});
+
+}  // namespace reftrack::app

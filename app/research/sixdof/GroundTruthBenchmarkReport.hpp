@@ -1,0 +1,36 @@
+#pragma once
+// What `bench-real --input` shows and writes of a GroundTruthBenchmarkResult: the table (the
+// recording, references, map and peer model sizes, then one row per method and order: coverage,
+// mean / p95 / max cube error, poses more than 5 px off and within 1.5 px, median thread CPU per
+// frame and its ratio to reftrack's in the same order, then why frames got no pose), a CSV of
+// every frame's cube error per method and order, and a PNG of the sequence-order errors per frame.
+#include <filesystem>
+#include <string>
+
+#include "app/research/sixdof/GroundTruthBenchmark.hpp"
+
+namespace reftrack::app {
+
+// Errors above this are drawn at it in the plot (the CSV keeps them), so sub-pixel differences
+// stay visible beside a peer's outliers.
+inline constexpr double kPlotErrorCapPx = 10.0;
+
+std::string groundTruthBenchmarkTable(const GroundTruthBenchmarkResult& result);
+
+// Header `frame,true_pose,<method>_<order>_px...`; one row per frame; an empty cell: no pose;
+// inf: the pose put the whole cube behind the camera.
+void writeGroundTruthBenchmarkCsv(const GroundTruthBenchmarkResult& result,
+                                  const std::filesystem::path& csv);
+void writeGroundTruthBenchmarkPlot(const GroundTruthBenchmarkResult& result,
+                                   const std::filesystem::path& png);
+
+struct GroundTruthBenchmarkFiles {
+  std::filesystem::path table, csv, plot;
+};
+
+// Writes table.txt, cube_errors.csv and cube_errors.png into `folder` (created if needed), each
+// atomically; returns their paths. Throws reftrack::Error when one cannot be written.
+GroundTruthBenchmarkFiles writeGroundTruthBenchmarkFiles(const GroundTruthBenchmarkResult& result,
+                                                         const std::filesystem::path& folder);
+
+}  // namespace reftrack::app

@@ -1,0 +1,142 @@
+#include "app/research/sixdof/GroundTruthBenchmarkReport.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+#include <sstream>
+
+#include "ErrorMessage.hpp"
+#include "TestPaths.hpp"
+
+namespace reftrack::app {
+namespace {
+
+// Four frames (frame 3 without a true pose), two methods in both orders.
+GroundTruthBenchmarkResult smallResult() {
+  GroundTruthBenchmarkResult r;
+  r.framesDescription = "images 'frames' (4 frames)";
+  r.groundTruthDescription = "TUM trajectory 'gt.txt' (3 poses)";
+  r.frameSize = {752, 480};
+  r.frames = 4;
+  r.truth = {true, true, true, false};
+  r.references = {0, 2};
+  r.referenceDistancesMm = {0.0, 41.5};
+  r.cubeCentre = {0.16, -0.10, 0.0};
+  r.cubeEdge = 0.1;
+  r.shuffleSeed = 7;
+  r.passes = 1;
+  r.mapPoints = 116;
+  r.mapKeypoints = 6000;
+  r.mapKeypointPoints = 248;
+  r.modelPoints = {{"SIFT+PnP", 162}};
+  auto run = [](const std::string& method, bool shuffled, std::vector<double> errors,
+                std::vector<double> cpu) {
+    MethodRun m;
+    m.method = method;
+    m.shuffled = shuffled;
+    m.errorPx = std::move(errors);
+    m.poses.resize(m.errorPx.size());
+    m.cpuMs = std::move(cpu);
+    return m;
+  };
+  r.runs = {run("reftrack", false, {0.2, 0.4, NAN, NAN}, {2, 2, 2, 2}),
+            run("reftrack", true, {NAN, 6.0, 0.3, NAN}, {20, 20, 20, 20}),
+            run("SIFT+PnP", false, {0.5, 12.0, 1.0, 0.7}, {80, 80, 80, 80}),
+            run("SIFT+PnP", true, {0.5, 12.0, 1.0, 0.7}, {90, 90, 90, 90}),
+            run("ORB+PnP", false, {INFINITY, 0.3, NAN, NAN}, {50, 50, 50, 50})};
+  r.runs[0].noPose["lost"] = 1;
+  r.runs[1].noPose["relocalisation: not enough support"] = 1;
+  r.seconds = 12.5;
+  return r;
+}
+
+std::vector<std::string> linesOf(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+TEST(GroundTruthBenchmarkReport, TableHasARowPerMethodAndOrder) {
+  const std::string table = groundTruthBenchmarkTable(smallResult());
+  const std::vector<std::string> lines = linesOf(table);
+  const auto header = std::find_if(lines.begin(), lines.end(),
+                                   [](const std::string& l) { return l.rfind("method ", 0) == 0; });
+  ASSERT_NE(header, lines.end()) << table;
+  for (const char* column : {"order", "frames", "posed", "cover%", "mean_px", "p95_px", "max_px",
+                             ">5px", "<=1.5px", "cpu_ms_med", "cpu_x"})
+    EXPECT_NE(header->find(column), std::string::npos) << column;
+  ASSERT_GE(lines.end() - header, 5);
+  // reftrack, sequence: frames 0-2 scored (3 has no truth), 2 posed; cpu_x 1.
+  std::istringstream row(*(header + 1));
+  std::string method, order, mean, p95, max, ratio;
+  int frames = 0, posed = 0, wrong = 0, good = 0;
+  double cover = 0, cpu = 0;
+  row >> method >> order >> frames >> posed >> cover >> mean >> p95 >> max >> wrong >> good >>
+      cpu >> ratio;
+  EXPECT_EQ(method, "reftrack");
+  EXPECT_EQ(order, "sequence");
+  EXPECT_EQ(frames, 3);
+  EXPECT_EQ(posed, 2);
+  EXPECT_NEAR(cover, 66.7, 1e-9);
+  EXPECT_EQ(mean, "0.300");
+  EXPECT_EQ(max, "0.40");
+  EXPECT_EQ(wrong, 0);
+  EXPECT_EQ(good, 2);
+  EXPECT_DOUBLE_EQ(cpu, 2.0);
+  EXPECT_EQ(ratio, "1.00");
+  // SIFT, shuffled: 12 px is wrong, frame 3 (0.7, no truth) not scored; CPU 90 / reftrack's 20.
+  EXPECT_NE(table.find("SIFT+PnP        shuffled       3       3  100.0    4.500"),
+            std::string::npos)
+      << table;
+  EXPECT_NE(table.find("    1       2      90.00   4.50\n"), std::string::npos) << table;
+  EXPECT_NE(table.find("references: frames 0 (0.0 mm from the first) 2 (41.5 mm"),
+            std::string::npos);
+  EXPECT_NE(table.find("reftrack map: 116 points; keypoint layer 6000 keypoints, 248 of them"),
+            std::string::npos);
+  EXPECT_NE(table.find("peers' triangulated points: SIFT+PnP 162"), std::string::npos);
+  EXPECT_NE(table.find("no pose, reftrack shuffled: 1 x relocalisation: not enough support"),
+            std::string::npos);
+  EXPECT_NE(table.find("order seed 7"), std::string::npos);
+  // A pose with the cube behind the camera: wrong, and named, but not in the mean.
+  EXPECT_NE(table.find("ORB+PnP         sequence       3       2   66.7    0.300"),
+            std::string::npos)
+      << table;
+  EXPECT_NE(table.find("ORB+PnP sequence: 1 pose(s) put the whole cube behind the camera"),
+            std::string::npos)
+      << table;
+}
+
+TEST(GroundTruthBenchmarkReport, WritesTableCsvAndPlotIntoTheFolder) {
+  const auto dir = test::freshTempDir("GroundTruthBenchmarkReport") / "out";
+  const GroundTruthBenchmarkResult r = smallResult();
+  const GroundTruthBenchmarkFiles files = writeGroundTruthBenchmarkFiles(r, dir);
+  EXPECT_EQ(files.table, dir / "table.txt");
+  EXPECT_EQ(test::readTextFile(files.table), groundTruthBenchmarkTable(r));
+  const std::vector<std::string> csv = linesOf(test::readTextFile(files.csv));
+  ASSERT_EQ(csv.size(), 5u);
+  EXPECT_EQ(csv[0],
+            "frame,true_pose,reftrack_sequence_px,reftrack_shuffled_px,sift_pnp_sequence_px,"
+            "sift_pnp_shuffled_px,orb_pnp_sequence_px");
+  EXPECT_EQ(csv[1], "0,1,0.2,,0.5,0.5,inf");
+  EXPECT_EQ(csv[4], "3,0,,,0.7,0.7,");
+  const cv::Mat plot = cv::imread(files.plot.string());
+  ASSERT_FALSE(plot.empty());
+  EXPECT_EQ(plot.size(), cv::Size(1200, 600));
+  // Nothing else is left in the folder (no temporary files).
+  int entries = 0;
+  for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir)) ++entries;
+  EXPECT_EQ(entries, 3);
+}
+
+TEST(GroundTruthBenchmarkReport, AnUnusableFolderIsAnError) {
+  const auto dir = test::freshTempDir("GroundTruthBenchmarkReportBad");
+  std::ofstream(dir / "file") << "x";
+  const std::string m =
+      test::errorMessage([&] { writeGroundTruthBenchmarkFiles(smallResult(), dir / "file"); });
+  EXPECT_NE(m.find("cannot create the output folder"), std::string::npos) << m;
+}
+
+}  // namespace
+}  // namespace reftrack::app
