@@ -447,37 +447,3 @@ TEST(HomographyTracker, ReportsNoColdRegistrationTheCheckRefuses) {
   EXPECT_EQ(unchecked.stageMs[6].second, 0.0);
   EXPECT_LT(test::cornerError(unchecked.H, truth, size), 0.5);
 }
-TEST(HomographyTracker, DISABLED_BrickDebug) {
-  const cv::Size size(640, 480);
-  const cv::Mat wall = test::brickWallImage(size, 71);
-  for (bool oneToOne : {false, true}) {
-    TrackerParams p = homographyParams();
-    p.homography.keypointOneToOne = oneToOne;
-    HomographyTracker tracker(wall, p);
-    for (int k = 0; k < 3; ++k) {
-      const cv::Matx33d truth = test::tiltedView(size, 40.0 + k, 0.8, 25.0 + 2 * k);
-      const auto r = tracker.track(test::withNoise(test::warpedBy(wall, truth), 2.0, 50 + k));
-      std::printf("one-to-one %d frame %d tracked %d guided %d kp %d err %.3f %s\n", oneToOne, k,
-                  r.tracked, r.guided, r.keypointGuided,
-                  r.tracked ? test::cornerError(r.H, truth, size) : -1.0, r.failure.c_str());
-    }
-  }
-  for (int speckles : {0, 1, 3})
-    for (int shades : {10, 25, 50})
-      for (bool oneToOne : {false, true}) {
-        const cv::Mat w2 = test::brickWallImage(size, 72, 48, 16, 3, speckles, shades);
-        TrackerParams p = homographyParams();
-        p.homography.keypointOneToOne = oneToOne;
-        KeypointHomographyRegistrar reg(w2, p.homography, p.ransac);
-        const cv::Matx33d truth = test::tiltedView(size, 35.0, 0.9, 25.0);
-        const auto k = reg.registerFrame(test::withNoise(test::warpedBy(w2, truth), 2.0, 50));
-        HomographyTracker t(w2, p);
-        const auto r = t.track(test::withNoise(test::warpedBy(w2, truth), 2.0, 50));
-        std::printf(
-            "speckles %d shades %d one-to-one %d: registrar found %d inliers %d matches %d err "
-            "%.2f; tracker %d err %.2f %s\n",
-            speckles, shades, oneToOne, k.found, k.inliers, k.matches,
-            k.found ? test::cornerError(k.H, truth, size) : -1.0, r.tracked,
-            r.tracked ? test::cornerError(r.H, truth, size) : -1.0, r.failure.c_str());
-      }
-}
