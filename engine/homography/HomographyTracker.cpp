@@ -99,6 +99,26 @@ int magnificationLevel(const cv::Matx33d& H, cv::Size size) {
   return level;
 }
 
+// A registration carried from the previous frame's that moves the frame's corners farther than
+// this (pixels at 320x240) from where the previous one put them is checked like a cold one: a
+// video moves a few pixels between frames, photos of a folder may jump by any amount.
+constexpr double kCheckedJumpPx = 10.0;
+
+// The largest distance between where `a` and `b` (reference -> frame) put the reference points
+// seen at the frame's corners (through b's inverse).
+double largestShift(const cv::Matx33d& a, const cv::Matx33d& b, cv::Size size) {
+  const cv::Matx33d binv = b.inv();
+  double worst = 0;
+  for (const cv::Point2d c :
+       {cv::Point2d(0, 0), cv::Point2d(size.width - 1, 0), cv::Point2d(0, size.height - 1),
+        cv::Point2d(size.width - 1, size.height - 1)}) {
+    const cv::Point2d q = transferPoint(a, transferPoint(binv, c));
+    const double d = std::hypot(q.x - c.x, q.y - c.y);
+    worst = std::max(worst, std::isfinite(d) ? d : std::numeric_limits<double>::infinity());
+  }
+  return worst;
+}
+
 // diag(f, f, 1): level pixels -> full-resolution pixels for f = 2^level (cv::pyrDown centres
 // level pixel u on full-resolution pixel 2u).
 cv::Matx33d levelScaling(int level) {
@@ -598,18 +618,35 @@ HomographyTrackResult HomographyTracker::track(const cv::Mat& frame) {
           (coasting ? "coasted prediction: " : "guided by the previous frame: ") + a.failure;
     else if (base)
       guidedFailure = "coasting ended: no frame-to-frame homography";
-    if (!base || coasting) {
-      // The guided attempt's frame corners seed the next frame-to-frame homography only if the
-      // unguided attempt does not replace them.
-      prevPoints_ = std::move(a.points);
-      prevPatches_ = std::move(a.patches);
-      a = coldAttempt(pyramid, stageMs, keypointGuided);
-      cold = true;
-    }
+    // The frame is registered cold too, including the first one the tracking loses: a sequence
+    // of photos (an image folder) may jump from view to view (measured on the simulated brick
+    // wall's 40 and 50 degree views in a row: lost guided, registered cold). The guided
+    // attempt's frame corners seed the next frame-to-frame homography only if the cold attempt
+    // does not replace them.
+    prevPoints_ = std::move(a.points);
+    prevPatches_ = std::move(a.patches);
+    a = coldAttempt(pyramid, stageMs, keypointGuided);
+    cold = true;
   }
 
-  // Tracked from the previous frame: refined only (cold and coasted ones were finished).
-  if (a.tracked && !a.finished && refiner_ && !a.rotationModel) refine(a, pyramid, stageMs);
+  // Tracked from the previous frame: refined (cold and coasted ones were finished), and checked
+  // only when it jumped far from the previous frame's registration (photos of an image folder,
+  // not a video: a guided match across a large jump can lock onto a wrong one).
+  if (a.tracked && !a.finished) {
+    if (refiner_ && !a.rotationModel) refine(a, pyramid, stageMs);
+    if (verifier_ && lastH_ &&
+        largestShift(*lastH_, a.est.H, gray.size()) >
+            kCheckedJumpPx * resolutionScale(gray.size())) {
+      auto clock = std::chrono::steady_clock::now();
+      const RegistrationCheck c = verifier_->check(pyramid, a.est.H);
+      stageMs[6] += lap(clock);
+      if (!c.passed) {
+        a.tracked = false;
+        a.failure =
+            "guided by the previous frame, then refused by the registration check: " + c.failure;
+      }
+    }
+  }
 
   HomographyTrackResult out;
   out.tracked = a.tracked;

@@ -447,3 +447,40 @@ TEST(HomographyTracker, ReportsNoColdRegistrationTheCheckRefuses) {
   EXPECT_EQ(unchecked.stageMs[6].second, 0.0);
   EXPECT_LT(test::cornerError(unchecked.H, truth, size), 0.5);
 }
+
+// Photos of an image folder jump from view to view. A frame the tracking around the previous
+// frame's homography cannot register is registered cold at once (not only after a coasted
+// frame), and a registration carried from the previous frame that moved the view farther than
+// 10 px at 320x240 is checked like a cold one; a video's small steps are not checked (the
+// verify stage costs nothing there).
+TEST(HomographyTracker, RegistersAJumpingPhotoColdAtOnceAndChecksOnlyLargeSteps) {
+  const cv::Size size(640, 480);
+  const cv::Mat world = test::texturedImage(size, 29);
+  HomographyTracker tracker(world, homographyParams());
+  const auto frameOf = [&](const cv::Matx33d& truth, int seed) {
+    return test::withNoise(test::warpedBy(world, truth), 2.0, seed);
+  };
+  const cv::Matx33d first = test::tiltedView(size, 10.0, 0.9, 15.0);
+  ASSERT_TRUE(tracker.track(frameOf(first, 80)).tracked);
+  // A jump: 40 degrees of tilt and 100 degrees of roll from the first view.
+  const cv::Matx33d jump = test::tiltedView(size, 45.0, 0.8, 115.0);
+  const auto cold = tracker.track(frameOf(jump, 81));
+  ASSERT_TRUE(cold.tracked) << cold.failure;
+  EXPECT_FALSE(cold.guided);
+  EXPECT_LT(test::cornerError(cold.H, jump, size), 1.0);
+  EXPECT_GT(cold.stageMs[6].second, 0.0);
+  // One pixel on: tracked from the previous frame, not checked.
+  const cv::Matx33d step = cv::Matx33d(1, 0, 1, 0, 1, 0, 0, 0, 1) * jump;
+  const auto small = tracker.track(frameOf(step, 82));
+  ASSERT_TRUE(small.tracked) << small.failure;
+  EXPECT_TRUE(small.guided);
+  EXPECT_EQ(small.stageMs[6].second, 0.0);
+  EXPECT_LT(test::cornerError(small.H, step, size), 1.0);
+  // 30 px on (15 px at 320x240): tracked from the previous frame and checked.
+  const cv::Matx33d leap = cv::Matx33d(1, 0, 30, 0, 1, 0, 0, 0, 1) * step;
+  const auto large = tracker.track(frameOf(leap, 83));
+  ASSERT_TRUE(large.tracked) << large.failure;
+  EXPECT_TRUE(large.guided);
+  EXPECT_GT(large.stageMs[6].second, 0.0);
+  EXPECT_LT(test::cornerError(large.H, leap, size), 1.0);
+}
