@@ -109,6 +109,8 @@ std::vector<HomographyPair> buildHomographyPairs(const std::filesystem::path& da
 void PairsOptions::check() const {
   if (!(noiseSigma >= 0.0 && noiseSigma <= 100.0))
     throw Error("pairs: noiseSigma must be in [0, 100]");
+  if (wallSupersample < 1 || wallSupersample > 8)
+    throw Error("pairs: wallSupersample must be in [1, 8]");
   params.check();
 }
 
@@ -119,8 +121,8 @@ PairsResult runPairsExperiment(const PairsOptions& options) {
   if (!options.broadViews)
     std::erase_if(out.pairs, [](const HomographyPair& p) { return p.kind != "photometric"; });
   if (options.hardSets)
-    for (HomographyPair& p :
-         buildHardHomographyPairs(options.dataDir, options.noiseSigma, options.seed))
+    for (HomographyPair& p : buildHardHomographyPairs(options.dataDir, options.noiseSigma,
+                                                      options.seed, options.wallSupersample))
       out.pairs.push_back(std::move(p));
   if (!options.onlySets.empty())
     std::erase_if(out.pairs, [&](const HomographyPair& p) {

@@ -45,6 +45,8 @@ struct PairsOptions {
   bool broadViews = true;  // the 18 views synthesised from each sequence's img1 ("<seq>-views")
   bool hardSets = true;    // the hard sets (HardHomographyPairs.hpp)
   std::vector<std::string> onlySets;  // when not empty: only the pairs of these sets
+  int wallSupersample = 4;            // rays per pixel (squared) of the simulated walls (1..8; see
+                                      // buildHardHomographyPairs)
   TrackerParams params;
   void check() const;  // throws reftrack::Error naming the bad field
 };
