@@ -67,9 +67,11 @@ CommandRegistration registerTrackCommand(CLI::App& parent) {
   sub->add_option("--labels", args->labels, "Homography: labels YAML (text, x, y per label)")
       ->check(CLI::ExistingFile);
   sub->add_option("--camera", args->camera,
-                  "Homography: camera.yml of the reference's camera (enables the rotation-only "
-                  "model for frames that barely overlap the reference; default for euroc: inputs: "
-                  "their sensor.yaml)")
+                  "Homography: camera.yml of the frames' camera (undistorts them; for a reference "
+                  "of its size, taken from the same camera, also enables the rotation-only model "
+                  "for frames that barely overlap it; a reference of another size is a picture "
+                  "from another camera, used as it is; default for euroc: inputs: their "
+                  "sensor.yaml)")
       ->check(CLI::ExistingFile);
   sub->add_option("--map", args->map, "6dof: folder written by `reftrack prepare`")
       ->check(CLI::ExistingDirectory);
@@ -92,7 +94,9 @@ CommandRegistration registerTrackCommand(CLI::App& parent) {
       "Homography CSV columns: index,timestamp,status,inlier_ratio,h11..h33,ms — status\n"
       "tracked|lost, H\n"
       "maps reference pixels to frame pixels (identity when lost), ms the tracker's time.\n"
-      "Labels YAML: labels: [ { text: \"Tower\", x: 120.5, y: 80.0 }, ... ] in reference pixels.");
+      "Labels YAML: labels: [ { text: \"Tower\", x: 120.5, y: 80.0 }, ... ] in reference pixels.\n"
+      "The reference and the frames may have different sizes (e.g. a phone photo as the\n"
+      "reference, tracked in webcam video).");
   sub->parse_complete_callback([args] {
     try {
       checkModeOptions(*args, chooseMode(*args));

@@ -56,9 +56,9 @@ std::unique_ptr<FrameSource> openFrameSource(const std::string& input,
     return std::make_unique<EurocSequenceSource>(dataset->dir);
   }
   if (input.find_first_of("*?[") != std::string::npos)
-    return std::make_unique<ImageFolderSource>(input, options.imageFps);
+    return std::make_unique<ImageFolderSource>(input, options.imageFps, options.anyImageSizes);
   if (std::filesystem::is_directory(input))
-    return std::make_unique<ImageFolderSource>(input, options.imageFps);
+    return std::make_unique<ImageFolderSource>(input, options.imageFps, options.anyImageSizes);
   return std::make_unique<VideoFileSource>(input);
 }
 

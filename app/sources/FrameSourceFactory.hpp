@@ -22,6 +22,7 @@ struct FrameSourceOptions {
   int simFrames = 300;     // simulator sequence length
   cv::Size simSize{640, 480};
   std::uint64_t simSeed = 1;
+  bool anyImageSizes = false;  // image folders may hold images of several sizes
 };
 
 std::unique_ptr<FrameSource> openFrameSource(const std::string& input,

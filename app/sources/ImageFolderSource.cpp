@@ -57,8 +57,8 @@ bool naturalLess(const std::string& a, const std::string& b) {
   return a.size() - i < b.size() - j;
 }
 
-ImageFolderSource::ImageFolderSource(const std::string& folderOrGlob, double fps)
-    : spec_(folderOrGlob), fps_(fps) {
+ImageFolderSource::ImageFolderSource(const std::string& folderOrGlob, double fps, bool anySizes)
+    : spec_(folderOrGlob), fps_(fps), anySizes_(anySizes) {
   if (!(std::isfinite(fps) && fps > 0))
     throw Error("image source '" + spec_ + "': fps must be positive");
   if (isGlob(folderOrGlob)) {
@@ -101,7 +101,7 @@ std::optional<Frame> ImageFolderSource::next() {
   if (image.empty())
     throw Error("image '" + file.string() + "' cannot be read (missing, corrupt or not an image)");
   if (firstSize_.area() == 0) firstSize_ = image.size();
-  if (image.size() != firstSize_)
+  if (!anySizes_ && image.size() != firstSize_)
     throw Error("image '" + file.string() + "' is " + std::to_string(image.cols) + "x" +
                 std::to_string(image.rows) + " but the first image of '" + spec_ + "' is " +
                 std::to_string(firstSize_.width) + "x" + std::to_string(firstSize_.height));

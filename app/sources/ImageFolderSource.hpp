@@ -1,8 +1,9 @@
 #pragma once
 // ImageFolderSource: the images of a folder (png, jpg, jpeg, bmp, tif, tiff, ppm, pgm) or of a
 // glob pattern ("frames/*.png"), in natural order (frame2 before frame10), at a nominal frame
-// rate. Images are read one at a time; an unreadable image or one whose size differs from the
-// first throws reftrack::Error naming the file. Grey images are converted to BGR.
+// rate. Images are read one at a time; an unreadable image or (unless anySizes) one whose size
+// differs from the first throws reftrack::Error naming the file. Grey images are converted to
+// BGR.
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -16,9 +17,11 @@ bool naturalLess(const std::string& a, const std::string& b);
 
 class ImageFolderSource final : public FrameSource {
  public:
-  // `folderOrGlob`: a folder, or a pattern with * ? in its last component. Throws
-  // reftrack::Error when the folder does not exist or no image matches.
-  explicit ImageFolderSource(const std::string& folderOrGlob, double fps = 30.0);
+  // `folderOrGlob`: a folder, or a pattern with * ? in its last component. anySizes: images may
+  // differ in size (photos from several cameras). Throws reftrack::Error when the folder does
+  // not exist or no image matches.
+  explicit ImageFolderSource(const std::string& folderOrGlob, double fps = 30.0,
+                             bool anySizes = false);
 
   std::optional<Frame> next() override;
   std::optional<int> frameCount() const override { return static_cast<int>(files_.size()); }
@@ -33,6 +36,7 @@ class ImageFolderSource final : public FrameSource {
   std::string spec_;
   std::vector<std::filesystem::path> files_;
   double fps_;
+  bool anySizes_ = false;
   int nextIndex_ = 0;
   cv::Size firstSize_{0, 0};
 };

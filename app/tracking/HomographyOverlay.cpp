@@ -24,7 +24,8 @@ HomographyOverlay::~HomographyOverlay() = default;
 cv::Mat HomographyOverlay::composite(const cv::Mat& frame, const PinholeCamera& camera,
                                      const TrackingResult& result, const OverlaySettings& settings,
                                      const std::string& label, const std::optional<cv::Matx33d>& H,
-                                     const AnnotationSet& labels) {
+                                     const AnnotationSet& labels, cv::Size referenceSize,
+                                     bool referenceSharesCamera) {
   if (!target_ || target_->size() != frame.size())
     target_ = std::make_unique<render::RenderTarget>(frame.size());
   target_->bind();
@@ -37,7 +38,8 @@ cv::Mat HomographyOverlay::composite(const cv::Mat& frame, const PinholeCamera& 
     const float scale = std::max(1.0f, frame.rows / 240.0f);
     // The reference image's border, sampled along each side (a projective map keeps lines
     // straight, but points behind the camera must be dropped: the polyline breaks there).
-    const double w = frame.cols - 0.5, h = frame.rows - 0.5;
+    const cv::Size reference = referenceSize.area() > 0 ? referenceSize : frame.size();
+    const double w = reference.width - 0.5, h = reference.height - 0.5;
     const cv::Point2d corners[4] = {{-0.5, -0.5}, {w, -0.5}, {w, h}, {-0.5, h}};
     // Through a lens H relates the undistorted images (HomographyFrameTracker): border and
     // labels are undistorted, mapped and distorted again (transferThroughLens), so the outline
@@ -52,7 +54,7 @@ cv::Mat HomographyOverlay::composite(const cv::Mat& frame, const PinholeCamera& 
       }
     std::vector<cv::Point2d> mappedBorder;
     if (lens) {
-      mappedBorder = transferThroughLens(*H, border, camera);
+      mappedBorder = transferThroughLens(*H, border, camera, referenceSharesCamera);
     } else {
       for (const cv::Point2d& p : border) {
         const double z = (*H)(2, 0) * p.x + (*H)(2, 1) * p.y + (*H)(2, 2);
@@ -71,7 +73,8 @@ cv::Mat HomographyOverlay::composite(const cv::Mat& frame, const PinholeCamera& 
     std::vector<cv::Point2d> positions;
     for (const Annotation& a : labels.labels()) positions.push_back(a.position);
     const std::vector<cv::Point2d> mapped =
-        lens ? transferThroughLens(*H, positions, camera) : labels.mapped(*H);
+        lens ? transferThroughLens(*H, positions, camera, referenceSharesCamera)
+             : labels.mapped(*H);
     for (size_t i = 0; i < mapped.size(); ++i) {
       const cv::Point2d q = mapped[i];
       if (!std::isfinite(q.x) || !std::isfinite(q.y)) continue;

@@ -22,10 +22,13 @@ class HomographyOverlay {
 
   // H: reference -> frame when the frame was registered (nullopt: no outline, no labels); between
   // the undistorted images when the camera has distortion (as HomographyFrameTracker gives it).
-  // Returns the composited BGR image of the frame's size.
+  // camera: the frame's; referenceSize: the reference's (empty: the frame's);
+  // referenceSharesCamera: the reference was recorded through the same lens (else its pixels are
+  // used as recorded). Returns the composited BGR image of the frame's size.
   cv::Mat composite(const cv::Mat& frame, const PinholeCamera& camera, const TrackingResult& result,
                     const OverlaySettings& settings, const std::string& label,
-                    const std::optional<cv::Matx33d>& H, const AnnotationSet& labels);
+                    const std::optional<cv::Matx33d>& H, const AnnotationSet& labels,
+                    cv::Size referenceSize = {}, bool referenceSharesCamera = true);
 
  private:
   OverlayCompositor compositor_;

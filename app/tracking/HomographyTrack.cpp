@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <memory>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "app/cli/Interruption.hpp"
 #include "app/cli/ProgressBar.hpp"
@@ -18,6 +19,25 @@
 #include "render/context/GlContext.hpp"
 
 namespace reftrack::app {
+
+namespace {
+
+// `image` scaled to fit `size` (aspect kept, centred on black): a frame of another size than the
+// recording's first (an image folder of several cameras' photos) in the recording.
+cv::Mat fitInto(const cv::Mat& image, cv::Size size) {
+  if (image.size() == size) return image;
+  const double s = std::min(static_cast<double>(size.width) / image.cols,
+                            static_cast<double>(size.height) / image.rows);
+  const cv::Size fitted(std::max(1, static_cast<int>(std::lround(image.cols * s))),
+                        std::max(1, static_cast<int>(std::lround(image.rows * s))));
+  cv::Mat scaled, out(size, image.type(), cv::Scalar::all(0));
+  cv::resize(image, scaled, fitted, 0, 0, cv::INTER_AREA);
+  scaled.copyTo(out(cv::Rect((size.width - fitted.width) / 2, (size.height - fitted.height) / 2,
+                             fitted.width, fitted.height)));
+  return out;
+}
+
+}  // namespace
 
 HomographyTrackSummary runHomographyTrack(const HomographyTrackOptions& o) {
   cv::Mat reference;
@@ -33,25 +53,24 @@ HomographyTrackSummary runHomographyTrack(const HomographyTrackOptions& o) {
   params.check();
   const AnnotationSet labels = o.labels.empty() ? AnnotationSet{} : AnnotationSet::load(o.labels);
 
-  TrackInput input(o.input, reference.size(), "the reference '" + o.reference.string() + "' is",
-                   o.maxFrames, !o.record.empty());
-
-  // A calibrated camera enables the rotation-only model; without one, the overlay still needs a
+  // The camera is the frames' camera (it fixes their size); without one, frames may have any
+  // size (all of the first frame's), whatever the reference's. A calibrated camera enables the
+  // rotation-only model for a reference of its size; without one, the overlay still needs a
   // camera of the frame size (homography mode draws no 3-D content, so any pinhole serves).
   // Without --camera, a euroc: input brings its sensor.yaml camera (cameraFromInput says so).
   const std::optional<PinholeCamera> calibrated =
       o.camera.empty() ? cameraFromInput(o.input)
                        : std::optional<PinholeCamera>(PinholeCamera::load(o.camera));
+  TrackInput input =
+      calibrated ? TrackInput(o.input, calibrated->imageSize(), "the camera is calibrated for",
+                              o.maxFrames, !o.record.empty())
+                 : TrackInput::anySize(o.input, reference.size(), o.maxFrames, !o.record.empty());
   HomographyFrameTracker tracker(reference, params, calibrated, labels);
-  const PinholeCamera camera =
-      calibrated ? *calibrated : PinholeCamera::fromFieldOfView(reference.size(), 60.0);
+  std::optional<PinholeCamera> camera = calibrated;  // the overlay's (set at the first frame)
   std::unique_ptr<HomographyOverlay> overlay;
   std::unique_ptr<VideoRecorder> recorder;
   const OverlaySettings settings;
-  if (!o.record.empty()) {
-    overlay = std::make_unique<HomographyOverlay>();
-    recorder = std::make_unique<VideoRecorder>(o.record, input.source().fps(), reference.size());
-  }
+  if (!o.record.empty()) overlay = std::make_unique<HomographyOverlay>();
 
   std::vector<HomographyFrameRecord> records;
   ProgressBar progress("track homography", static_cast<std::size_t>(input.expectedCount()));
@@ -77,13 +96,19 @@ HomographyTrackSummary runHomographyTrack(const HomographyTrackOptions& o) {
     records.push_back(record);
     ms.push_back(elapsed);
     summary.tracked += r.tracked ? 1 : 0;
-    if (recorder) {
+    if (overlay) {
+      if (camera && camera->imageSize() != frame->image.size()) camera.reset();
+      if (!camera) camera = PinholeCamera::fromFieldOfView(frame->image.size(), 60.0);
+      if (!recorder)
+        recorder =
+            std::make_unique<VideoRecorder>(o.record, input.source().fps(), frame->image.size());
       const std::optional<cv::Matx33d> H =
           r.tracked ? std::optional<cv::Matx33d>(r.H) : std::nullopt;
-      const cv::Mat composite = overlay->composite(
-          frame->image, camera, result, settings,
-          "frame " + std::to_string(frame->index) + "  " + result.status, H, labels);
-      recorder->write(composite, frame->timestamp, std::nullopt);
+      const cv::Mat composite =
+          overlay->composite(frame->image, *camera, result, settings,
+                             "frame " + std::to_string(frame->index) + "  " + result.status, H,
+                             labels, tracker.referenceSize(), tracker.referenceSharesCamera());
+      recorder->write(fitInto(composite, recorder->frameSize()), frame->timestamp, std::nullopt);
     }
     ++summary.frames;
     progress.advance();

@@ -12,7 +12,8 @@ struct HomographyTrackOptions {
   std::filesystem::path reference;  // the stored frame (image file)
   std::string input;                // video file, image folder/glob, camera:N, sim:PRESET
   std::filesystem::path labels;     // optional AnnotationSet YAML
-  std::filesystem::path camera;     // optional camera.yml (K: rotation-only model)
+  std::filesystem::path camera;     // optional camera.yml of the frames' camera (K: rotation-only
+                                    // model for a reference of its size; lens distortion)
   std::filesystem::path params;     // optional TrackerParams YAML
   std::filesystem::path csv;        // per-frame CSV; empty = none
   std::filesystem::path record;     // MP4 of the registered overlay; empty = none
@@ -25,8 +26,9 @@ struct HomographyTrackSummary {
   double medianMs = 0.0;
 };
 
-// Throws reftrack::Error on bad input (unreadable reference, frame size differing from the
-// reference's, bad labels or params); nothing is written then.
+// The reference and the frames may have different sizes (another camera). Throws
+// reftrack::Error on bad input (unreadable reference, a first frame of another size than the
+// camera's, bad labels or params); nothing is written then.
 HomographyTrackSummary runHomographyTrack(const HomographyTrackOptions& options);
 
 }  // namespace reftrack::app

@@ -10,11 +10,26 @@ namespace reftrack::app {
 
 TrackInput::TrackInput(const std::string& input, cv::Size size, std::string sizeOwner,
                        int maxFrames, bool recording)
-    : input_(input), sizeOwner_(std::move(sizeOwner)), size_(size), maxFrames_(maxFrames) {
+    : TrackInput(input, size, std::move(sizeOwner), maxFrames, recording, false) {}
+
+TrackInput::TrackInput(const std::string& input, cv::Size size, std::string sizeOwner,
+                       int maxFrames, bool recording, bool anySize)
+    : input_(input),
+      sizeOwner_(std::move(sizeOwner)),
+      size_(size),
+      anySize_(anySize),
+      maxFrames_(maxFrames) {
   if (isSimulatorInput(input) || recording) gl_ = render::createHeadlessContext();
   FrameSourceOptions options;
   options.simSize = size;
+  options.anyImageSizes = anySize;
   source_ = openFrameSource(input, options);
+  if (anySize) size_ = cv::Size();
+}
+
+TrackInput TrackInput::anySize(const std::string& input, cv::Size simSize, int maxFrames,
+                               bool recording) {
+  return TrackInput(input, simSize, "", maxFrames, recording, true);
 }
 
 int TrackInput::expectedCount() const {
@@ -32,6 +47,7 @@ std::optional<Frame> TrackInput::next() {
   } catch (const Error& e) {
     error_ = e.what();
   }
+  if (frame && anySize_) size_ = frame->image.size();
   if (frame && frame->image.size() != size_) {
     error_ = "input '" + input_ + "' frame " + std::to_string(frame->index) + " is " +
              std::to_string(frame->image.cols) + "x" + std::to_string(frame->image.rows) + " but " +

@@ -2,8 +2,8 @@
 // TrackInput: the frames a `reftrack track` run reads (either mode), with the headless GL context
 // that a `sim:` input or a recording needs. At most maxFrames (-1: all). A frame that cannot be
 // read, or is not of the expected size, ends the input mid-stream like its end, so every output
-// written up to it is kept; the run reports it once the outputs are finished
-// (throwIfCutShort). A wrong size on the very first frame throws at once.
+// written up to it is kept; the run reports it once the outputs are finished (throwIfCutShort).
+// A wrong size on the very first frame throws at once. (anySize: no expected size.)
 #include <memory>
 #include <opencv2/core.hpp>
 #include <optional>
@@ -20,6 +20,13 @@ class TrackInput {
   // `sizeOwner` ends the wrong-size message before the size ("the camera is calibrated for").
   TrackInput(const std::string& input, cv::Size size, std::string sizeOwner, int maxFrames,
              bool recording);
+  // Frames of any sizes, an image folder's too (photos from several cameras); a `sim:` input is
+  // rendered at simSize.
+  static TrackInput anySize(const std::string& input, cv::Size simSize, int maxFrames,
+                            bool recording);
+
+  // The frames' size: the given one, or (anySize) the last frame's (empty before the first).
+  cv::Size frameSize() const { return size_; }
 
   FrameSource& source() { return *source_; }
   // Frames the run will read, for the progress bar (0 when the source cannot tell).
@@ -34,8 +41,12 @@ class TrackInput {
   void throwIfCutShort() const;
 
  private:
+  TrackInput(const std::string& input, cv::Size size, std::string sizeOwner, int maxFrames,
+             bool recording, bool anySize);
+
   std::string input_, sizeOwner_;
   cv::Size size_;
+  bool anySize_ = false;  // no expected size: size_ is the last frame's
   int maxFrames_;
   std::unique_ptr<render::GlContext> gl_;
   std::unique_ptr<FrameSource> source_;

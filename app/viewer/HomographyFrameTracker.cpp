@@ -14,19 +14,20 @@ HomographyFrameTracker::HomographyFrameTracker(const cv::Mat& reference,
     : reference_(toGray8(reference).clone()),
       camera_(std::move(camera)),
       labels_(std::move(labels)) {
-  if (camera_ && camera_->imageSize() != reference_.size())
-    throw Error("homography tracker: the camera is calibrated for " +
-                std::to_string(camera_->imageSize().width) + "x" +
-                std::to_string(camera_->imageSize().height) + " but the reference is " +
-                std::to_string(reference_.cols) + "x" + std::to_string(reference_.rows));
+  sameCamera_ = camera_ && camera_->imageSize() == reference_.size();
   if (camera_ && camera_->hasDistortion()) {
     undistorter_.emplace(*camera_);
-    reference_ = undistorter_->undistort(reference_);
+    if (sameCamera_) reference_ = undistorter_->undistort(reference_);
   }
   applyParams(params);
 }
 
 TrackingResult HomographyFrameTracker::process(const cv::Mat& frame, int, double) {
+  if (camera_ && frame.size() != camera_->imageSize())
+    throw Error("homography tracker: the frame is " + std::to_string(frame.cols) + "x" +
+                std::to_string(frame.rows) + " but the camera is calibrated for " +
+                std::to_string(camera_->imageSize().width) + "x" +
+                std::to_string(camera_->imageSize().height));
   last_ = tracker_->track(undistorter_ ? undistorter_->undistort(toGray8(frame)) : frame);
   TrackingResult r;
   r.status = last_.tracked ? "tracking" : "lost";
@@ -44,7 +45,7 @@ TrackingResult HomographyFrameTracker::process(const cv::Mat& frame, int, double
         from.push_back(a);
         to.push_back(b);
       }
-      from = toRecorded(from);
+      if (sameCamera_) from = toRecorded(from);  // else the reference's pixels as recorded
       to = toRecorded(to);
       for (std::size_t i = 0; i < from.size(); ++i) r.debug.matches.emplace_back(from[i], to[i]);
     } else {
@@ -54,11 +55,11 @@ TrackingResult HomographyFrameTracker::process(const cv::Mat& frame, int, double
     if (undistorter_) {
       std::vector<cv::Point2d> positions;
       for (const Annotation& a : labels_.labels()) positions.push_back(a.position);
-      mappedLabels_ = transferThroughLens(last_.H, positions, *camera_);
+      mappedLabels_ = transferThroughLens(last_.H, positions, *camera_, sameCamera_);
     } else {
       mappedLabels_ = labels_.mapped(last_.H);
     }
-    if (camera_)
+    if (camera_ && sameCamera_ && frame.size() == reference_.size())
       r.worldToCamera =
           RigidPose(rotationFromHomography(last_.H, camera_->K()), Eigen::Vector3d::Zero());
   }

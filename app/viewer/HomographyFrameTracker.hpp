@@ -4,11 +4,14 @@
 // debug layers (frame corners, inlier matches drawn from the reference position), TrackingResult
 // H (frame -> reference, as FrameTracker documents) and, given the camera, the rotation-only pose
 // R = K^-1 H K (world = the reference camera's frame, zero translation). Labels of the reference
-// frame are mapped into each registered frame (mappedLabels()). The camera's K also enables the
-// tracker's rotation-only model (homography.rotation_model). A camera with lens distortion has
-// the reference and every frame undistorted (FrameUndistorter) before registration: the
-// homography (last().H, TrackingResult H, the pose) then relates undistorted pixels, while the
-// debug layers and mappedLabels() are distorted back onto the recorded frame.
+// frame are mapped into each registered frame (mappedLabels()).
+// The camera is the frames' camera. The reference may have any size: of the camera's size it is
+// taken to come from the same camera (undistorted with it; the rotation-only model and pose
+// apply), of another size from another camera whose intrinsics are unknown (used as recorded;
+// general homography only, no pose). A camera with lens distortion has every frame (and a
+// same-camera reference) undistorted (FrameUndistorter) before registration: the homography
+// (last().H, TrackingResult H, the pose) then relates undistorted pixels, while the debug layers
+// and mappedLabels() are distorted back onto the recorded frame.
 #include <memory>
 #include <optional>
 
@@ -22,8 +25,7 @@ namespace reftrack::app {
 
 class HomographyFrameTracker : public FrameTracker {
  public:
-  // Throws reftrack::Error as HomographyTracker does, or when the camera's image size differs
-  // from the reference's.
+  // Throws reftrack::Error as HomographyTracker does.
   HomographyFrameTracker(const cv::Mat& reference, const TrackerParams& params,
                          std::optional<PinholeCamera> camera = {}, AnnotationSet labels = {});
 
@@ -38,6 +40,9 @@ class HomographyFrameTracker : public FrameTracker {
   // Label positions in the last processed frame (empty when it was not registered).
   const std::vector<cv::Point2d>& mappedLabels() const { return mappedLabels_; }
   const HomographyTracker& tracker() const { return *tracker_; }
+  // The reference's size, and whether it comes from the frames' camera (it has its size).
+  cv::Size referenceSize() const { return reference_.size(); }
+  bool referenceSharesCamera() const { return sameCamera_; }
 
  private:
   // Undistorted pixels -> the recorded frame's (unchanged without distortion).
@@ -47,6 +52,7 @@ class HomographyFrameTracker : public FrameTracker {
   std::optional<FrameUndistorter> undistorter_;
   std::unique_ptr<HomographyTracker> tracker_;
   std::optional<PinholeCamera> camera_;
+  bool sameCamera_ = false;  // the reference comes from camera_ (has its size)
   AnnotationSet labels_;
   HomographyTrackResult last_;
   std::vector<cv::Point2d> mappedLabels_;

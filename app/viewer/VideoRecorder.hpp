@@ -33,6 +33,7 @@ class VideoRecorder {
   void close();
 
   int framesWritten() const { return frames_; }
+  cv::Size frameSize() const { return size_; }  // the size write() takes
   const std::filesystem::path& videoPath() const { return mp4_; }
   const std::filesystem::path& trajectoryPath() const { return trajectory_; }
   // `<folder>/<stem>_trajectory.txt` for `<folder>/<stem>.mp4`.

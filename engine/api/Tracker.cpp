@@ -80,7 +80,8 @@ const char* toString(Tracker::State state) {
 
 struct Tracker::Impl {
   Mode mode = Mode::SixDof;
-  cv::Size size;
+  cv::Size size;           // the frames' required size (empty: any)
+  cv::Size referenceSize;  // the map's, or the reference image's
   std::optional<Eigen::Matrix3d> K;
   std::unique_ptr<MultiReferenceTracker> sixDof;
   std::unique_ptr<HomographyTracker> homography;
@@ -116,7 +117,8 @@ struct Tracker::Impl {
       out.state = State::Tracking;
       out.homography = r.H;
       if (r.rotationModel) out.reason = "rotation-only model";
-      if (K)
+      // K is the frames' camera: the rotation pose needs a reference from the same camera.
+      if (K && frame.size() == referenceSize)
         out.worldToCamera = RigidPose(rotationFromHomography(r.H, *K), Eigen::Vector3d::Zero());
     } else {
       out.state = trackedSinceReset ? State::Lost : State::Initialising;
@@ -144,6 +146,7 @@ Tracker Tracker::openMap(const std::filesystem::path& mapFolder, const TrackerPa
   auto impl = std::make_unique<Impl>();
   impl->mode = Mode::SixDof;
   impl->size = map.camera.imageSize();
+  impl->referenceSize = impl->size;
   impl->K = map.camera.K();
   impl->sixDof = std::make_unique<MultiReferenceTracker>(std::move(map), p);
   return Tracker(std::move(impl));
@@ -163,18 +166,12 @@ Tracker Tracker::openReference(const std::filesystem::path& referenceImage,
   const cv::Mat reference = cv::imread(referenceImage.string(), cv::IMREAD_COLOR);
   if (reference.empty())
     throw Error("cannot read the reference image '" + referenceImage.string() + "'");
-  std::optional<Eigen::Matrix3d> K;
-  if (!cameraFile.empty()) {
-    const PinholeCamera camera = PinholeCamera::load(cameraFile);
-    if (camera.imageSize() != reference.size())
-      throw Error("camera '" + cameraFile.string() + "' is calibrated for " +
-                  std::to_string(camera.imageSize().width) + "x" +
-                  std::to_string(camera.imageSize().height) + " but the reference '" +
-                  referenceImage.string() + "' is " + std::to_string(reference.cols) + "x" +
-                  std::to_string(reference.rows));
-    K = camera.K();
-  }
-  return openReference(reference, K, params);
+  std::optional<PinholeCamera> camera;
+  if (!cameraFile.empty()) camera = PinholeCamera::load(cameraFile);
+  Tracker t = openReference(
+      reference, camera ? std::optional<Eigen::Matrix3d>(camera->K()) : std::nullopt, params);
+  if (camera) t.impl_->size = camera->imageSize();  // the frames' camera fixes their size
+  return t;
 }
 
 Tracker Tracker::openReference(const cv::Mat& reference, const std::optional<Eigen::Matrix3d>& K,
@@ -186,17 +183,17 @@ Tracker Tracker::openReference(const cv::Mat& reference, const std::optional<Eig
   impl->mode = Mode::Homography;
   impl->K = K;
   impl->homography = std::make_unique<HomographyTracker>(reference, p, K);
-  impl->size = impl->homography->imageSize();
+  impl->referenceSize = impl->homography->referenceSize();
   return Tracker(std::move(impl));
 }
 
 Tracker::Result Tracker::track(const cv::Mat& frame) {
   const auto start = std::chrono::steady_clock::now();
   if (frame.empty()) throw Error("tracker: empty frame");
-  if (frame.size() != impl_->size)
+  if (impl_->size.area() > 0 && frame.size() != impl_->size)
     throw Error("tracker: frame is " + std::to_string(frame.cols) + "x" +
                 std::to_string(frame.rows) + " but the " +
-                (impl_->mode == Mode::SixDof ? "map" : "reference") + " is " +
+                (impl_->mode == Mode::SixDof ? "map" : "camera") + " is " +
                 std::to_string(impl_->size.width) + "x" + std::to_string(impl_->size.height));
   Result out;
   out.frameIndex = impl_->frames++;
@@ -218,6 +215,7 @@ void Tracker::reset() {
 
 Tracker::Mode Tracker::mode() const { return impl_->mode; }
 cv::Size Tracker::imageSize() const { return impl_->size; }
+cv::Size Tracker::referenceSize() const { return impl_->referenceSize; }
 std::optional<Eigen::Matrix3d> Tracker::camera() const { return impl_->K; }
 
 }  // namespace reftrack

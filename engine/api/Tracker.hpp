@@ -33,8 +33,9 @@ class Tracker {
     State state = State::Initialising;
     std::string reason;   // why not tracking; while tracking, how the pose was found, if notable
     int frameIndex = -1;  // 0 for the first track() call after open or reset()
-    // 6-DOF, set while tracking. Homography mode with a camera: the rotation-only pose of a
-    // camera turning about its centre (world = the reference camera's frame, t = 0).
+    // 6-DOF, set while tracking. Homography mode with a camera and a reference of its size: the
+    // rotation-only pose of a camera turning about its centre (world = the reference camera's
+    // frame, t = 0).
     std::optional<RigidPose> worldToCamera;
     // 6-DOF: covariance of worldToCamera's 6-vector (t_x, t_y, t_z, r_x, r_y, r_z), r axis-angle
     // (metres, radians): the tracker's Omega_k (paper Sec. 5) propagated to the world frame. It
@@ -51,8 +52,11 @@ class Tracker {
   // 6-DOF tracking against a prepared map (format 2, or a version-1 two-reference map).
   static Tracker openMap(const std::filesystem::path& mapFolder, const TrackerOptions& = {});
   static Tracker openMap(const std::filesystem::path& mapFolder, const TrackerParams& params);
-  // Homography mode against one stored frame; cameraFile (camera.yml, optional) enables the
-  // rotation-only model and the rotation pose.
+  // Homography mode against one stored frame of any size; cameraFile (camera.yml, optional) is
+  // the frames' camera: the frames must have its size, and a reference of that size is taken to
+  // come from the same camera (the rotation-only model and pose apply); a reference of another
+  // size is a picture from another camera (general homography only, no pose). K: the same, as a
+  // matrix (no size check).
   static Tracker openReference(const std::filesystem::path& referenceImage,
                                const std::filesystem::path& cameraFile = {},
                                const TrackerOptions& = {});
@@ -70,7 +74,10 @@ class Tracker {
   void reset();  // forget the past: the next frame is tracked as a first one (frameIndex 0)
 
   Mode mode() const;
-  cv::Size imageSize() const;                     // the size track() accepts
+  // The frame size track() accepts: the map's (6-DOF), the camera's (homography mode with a
+  // camera file); empty when any size is accepted (homography mode otherwise).
+  cv::Size imageSize() const;
+  cv::Size referenceSize() const;  // homography mode: the reference image's; 6-DOF: the map's
   std::optional<Eigen::Matrix3d> camera() const;  // K, when known
 
  private:

@@ -46,6 +46,16 @@ void HomographyTrackerParams::fields(Self& p, const Field& field) {
   field("refine_points", p.refinePoints, OffOrRange{8, 100000});
   field("keypoint_tilt_views", p.keypointTiltViews, Range{0, 16});
   field("keypoint_confident_inliers", p.keypointConfidentInliers, Range{4, 100000});
+  field("keypoint_steep_tilt_views", p.keypointSteepTiltViews, Range{0, 16});
+  field("keypoint_steep_tilt_deg", p.keypointSteepTiltDeg, Range{30.0, 80.0});
+  field("keypoint_one_to_one", p.keypointOneToOne);
+  field("verify", p.verify);
+  field("verify_min_score", p.verifyMinScore, Range{-0.99, 0.99});
+  field("verify_search_px", p.verifySearchPx, Range{1.0, 50.0});
+  field("verify_tolerance_px", p.verifyTolerancePx, Range{0.05, 50.0});
+  field("verify_min_fraction", p.verifyMinFraction, Range{0.0, 1.0});
+  field("verify_min_spread", p.verifyMinSpread, Range{0.0, 1.0});
+  field("verify_max_offset_px", p.verifyMaxOffsetPx, Range{0.001, 100.0});
 }
 
 template struct ParamSection<HomographyTrackerParams>;

@@ -65,10 +65,11 @@ bool finite(const cv::Matx33d& H) {
 
 }  // namespace
 
-HomographyRefiner::HomographyRefiner(const cv::Mat& referenceGray, int pointsAt320x240) {
+HomographyRefiner::HomographyRefiner(const cv::Mat& referenceGray, int pointsAt320x240,
+                                     bool fullResolution) {
   if (referenceGray.empty()) throw Error("homography refiner: the reference image is empty");
   if (pointsAt320x240 < 8) throw Error("homography refiner: at least 8 points are needed");
-  level_ = alignmentLevel(referenceGray.size());
+  level_ = fullResolution ? 0 : alignmentLevel(referenceGray.size());
   reference_ = ImagePyramid(toGray8(referenceGray)).level(level_);
   CornerParams c;
   c.countAt320x240 = pointsAt320x240;

@@ -35,9 +35,10 @@ struct RefinedHomography {
 class HomographyRefiner {
  public:
   // reference: 8-bit grey; pointsAt320x240: how many reference points (strongest Harris corners,
-  // no grid quota, scaled with the image area). Throws reftrack::Error on an empty reference or
-  // pointsAt320x240 < 8.
-  HomographyRefiner(const cv::Mat& referenceGray, int pointsAt320x240);
+  // no grid quota, scaled with the image area). fullResolution: align on the given images
+  // themselves whatever their size (a frame's pyramid level registered to the full reference).
+  // Throws reftrack::Error on an empty reference or pointsAt320x240 < 8.
+  HomographyRefiner(const cv::Mat& referenceGray, int pointsAt320x240, bool fullResolution = false);
 
   // frameGray: 8-bit grey; H: reference -> frame, within a few pixels of the truth where the
   // reference points land. Fails (success = false, H unchanged) when fewer than minInliers points

@@ -16,11 +16,17 @@
 // drawing from the best correlation scores first; a hypothesis short of the inlier rules is
 // re-matched around its own prediction), so tracking re-acquires on its own when the view
 // returns. Every registered H is finally refined (HomographyRefiner, homography.refine_points),
-// so a frame gets the same H whether it was tracked or registered cold.
+// so a frame gets the same H whether it was tracked or registered cold. A registration not
+// carried from the previous frame's (cold, or after a loss) is reported only once
+// RegistrationVerifier confirms it (homography.verify): the reference warped by H must match the
+// frame over the whole overlap; otherwise the frame is lost with the reason. A cold frame that
+// magnifies the reference (a 2-4x zoom) is registered on the pyramid level where the reference
+// appears at about its own scale. Reference and frames may differ in size (another camera).
 // Given the camera's K, a frame the general homography fails on — or fits on a thin strip only —
 // is solved with the rotation-only model H = K R K^-1 (homography.rotation_model), which a
 // sliver of overlap still determines.
 #include <Eigen/Core>
+#include <map>
 #include <opencv2/core.hpp>
 #include <optional>
 #include <string>
@@ -32,6 +38,7 @@
 #include "engine/features/CornerDetector.hpp"
 #include "engine/homography/HomographyRefiner.hpp"
 #include "engine/homography/KeypointHomographyRegistrar.hpp"
+#include "engine/homography/RegistrationVerifier.hpp"
 #include "engine/homography/RobustHomographyEstimator.hpp"
 #include "engine/homography/RotationHomographyEstimator.hpp"
 #include "engine/matching/NarrowBaselineMatcher.hpp"
@@ -56,24 +63,28 @@ struct HomographyTrackResult {
   // Inlier correspondences (reference position, frame position) of the final H.
   std::vector<std::pair<cv::Point2f, cv::Point2f>> inlierMatches;
   // Milliseconds per stage, in order: corners, prediction, matching, robust fit, keypoints,
-  // refine.
+  // refine, verify.
   std::vector<std::pair<std::string, double>> stageMs;
 };
 
 class HomographyTracker {
  public:
-  // reference: the stored frame (8-bit grey or BGR); K: the camera's intrinsics when calibrated
-  // (enables the rotation-only model). Throws reftrack::Error on an empty image, bad
-  // parameters, a non-invertible K, or a reference with fewer than 8 corners.
+  // reference: the stored frame (8-bit grey or BGR), of any size; K: the intrinsics of the
+  // frames' camera when calibrated. It enables the rotation-only model for frames of the
+  // reference's size (the reference is then taken to come from the same camera; of another size,
+  // it comes from another camera whose K is unknown, and only the general homography is fitted).
+  // Throws reftrack::Error on an empty image, bad parameters, a non-invertible K, or a reference
+  // with fewer than 8 corners.
   HomographyTracker(const cv::Mat& reference, const TrackerParams& params,
                     const std::optional<Eigen::Matrix3d>& K = std::nullopt);
 
-  // Frames must have the reference's size (else reftrack::Error naming both sizes).
+  // Frames may have any size (another camera than the reference's); a frame whose size differs
+  // from the previous one's is registered cold. Throws reftrack::Error on an empty frame.
   HomographyTrackResult track(const cv::Mat& frame);
   void reset();  // forget the previous frame: the next one is matched unguided
 
   const std::vector<Corner>& referenceCorners() const { return ref_.corners; }
-  cv::Size imageSize() const { return refGray_.size(); }
+  cv::Size referenceSize() const { return refGray_.size(); }
   bool lost() const { return !lastH_.has_value(); }
 
  private:
@@ -82,10 +93,10 @@ class HomographyTracker {
   // coasting.
   std::optional<cv::Matx33d> predict(const cv::Matx33d& base, bool coasting,
                                      const std::vector<cv::Point2f>& points,
-                                     const NccPatches& patches) const;
+                                     const NccPatches& patches, cv::Size frameSize) const;
 
-  // corners, prediction, matching, robust fit, keypoints, refine
-  static constexpr int kStages = 6;
+  // corners, prediction, matching, robust fit, keypoints, refine, verify
+  static constexpr int kStages = 7;
 
   // One corner set of the reference with its windows (tracking or re-acquisition density).
   struct ReferenceSet {
@@ -113,6 +124,10 @@ class HomographyTracker {
     std::optional<cv::Matx33d> hypothesis;
     bool tracked = false;
     std::string failure;
+    // Registered on this frame pyramid level (then refined there; H, points and dst carried
+    // back to full resolution).
+    int level = 0;
+    bool finished = false;  // refined and checked (finish())
   };
   Attempt attempt(const ImagePyramid& frame, const CornerDetector& detector,
                   const ReferenceSet& ref, const std::optional<cv::Matx33d>& base, bool coasting,
@@ -125,21 +140,41 @@ class HomographyTracker {
   void matchAndFit(Attempt& a, const cv::Mat& gray, const ReferenceSet& ref,
                    const std::optional<cv::Matx33d>& guide, double guidedHalf,
                    double stageMs[kStages], int denseRadius = 0) const;
-  // The registered attempt's H refined by refiner_ (kept when it still fits the attempt's
-  // inliers); stageMs[5] accumulates.
-  void refine(Attempt& a, const ImagePyramid& frame, double stageMs[kStages]) const;
-  // Registration without a prediction: around the keypoint layer's homography, then unguided.
+  // The registered attempt's H refined by `refiner` (refiner_ when null; kept when it still fits
+  // the attempt's inliers); stageMs[5] accumulates.
+  void refine(Attempt& a, const ImagePyramid& frame, double stageMs[kStages],
+              const HomographyRefiner* refiner = nullptr) const;
+  // A registration not carried from the previous frame's (cold, or after a loss): refined
+  // (unless done on a pyramid level, or the rotation model) and checked by verifier_; a refused
+  // one is no longer tracked and says why. stageMs[5..6] accumulate.
+  void finish(Attempt& a, const ImagePyramid& frame, double stageMs[kStages]) const;
+  // Registration around `start` (reference -> frame, a few pixels off): aligned by the refiner,
+  // then the reference windows searched close around it (on a pyramid level for a frame that
+  // magnifies the reference), finished.
+  Attempt alignedAttempt(const ImagePyramid& frame, const cv::Matx33d& start,
+                         double stageMs[kStages]);
+  // Registration without a prediction: around the keypoint layer's homography, then unguided;
+  // each finished.
   Attempt coldAttempt(const ImagePyramid& frame, double stageMs[kStages], bool& keypointGuided);
 
   TrackerParams params_;
-  CornerDetector detector_;           // the reference's tracking corners
-  CornerDetector frameDetector_;      // a tracked frame's: count times frame_corner_factor
-  CornerDetector reacquireDetector_;  // both sides while lost: count times reacquire_corner_factor
+  CornerDetector detector_;                // the reference's tracking corners
+  CornerDetector frameDetector_;           // a tracked frame's: count times frame_corner_factor
+  CornerDetector reacquireDetector_;       // the reference's while lost: count times
+                                           // reacquire_corner_factor
+  CornerDetector frameReacquireDetector_;  // the same for the frames' size
+  cv::Size frameSize_;                     // of the last frame
   NarrowBaselineMatcher matcher_;
   RobustHomographyEstimator estimator_;
   std::optional<RotationHomographyEstimator> rotationEstimator_;  // with K and rotation_model
   std::optional<KeypointHomographyRegistrar> keypointRegistrar_;  // unless keypoints is none
   std::optional<HomographyRefiner> refiner_;                      // unless refine_points is 0
+  // Cold registrations on frame pyramid level l > 0 (a zoomed frame sees a 4^-l part of the
+  // reference): refiners aligning the full reference to the level with 4^l times the points,
+  // built on first use (key l).
+  std::map<int, HomographyRefiner> levelRefiners_;
+  const HomographyRefiner& levelRefiner(int level);
+  std::optional<RegistrationVerifier> verifier_;  // unless verify is false
   cv::Mat refGray_;
   ReferenceSet ref_, reacquireRef_;
   // The previous frame (for the frame-to-frame homography) and its registration.

@@ -1,5 +1,6 @@
 #include "engine/homography/KeypointHomographyRegistrar.hpp"
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <opencv2/calib3d.hpp>
@@ -53,13 +54,21 @@ constexpr double kTiltDeg = 50.0;
 // img1 of bikes, leuven, trees, ubc and the box photo zoomed 1.4-3.6x with rotation: misses
 // at 3.0x and 3.6x where SIFT registers (README, homography cold registration).
 constexpr int kZoomFinerLevels = 4;
+// The keypoint homography's area ratio (frame pixels per reference pixel, where its inliers lie)
+// must lie within [1 / kMaxAreaRatio, kMaxAreaRatio]: zooms to 6x (a 4x zoom seen at 40 degrees
+// has ~21; the tracker's min_determinant bound of 20 refused such views outright).
+constexpr double kMaxAreaRatio = 36.0;
+// The ratio test's rival: the nearest of the kNearest reference keypoints lying farther than
+// max(kDuplicateMinPx, kDuplicateSizeFraction * the keypoint's size) from the nearest.
+constexpr int kNearest = 4;
+constexpr float kDuplicateMinPx = 4.0f, kDuplicateSizeFraction = 0.25f;
 constexpr double kPi = 3.14159265358979323846;
 
-// The affine map of the reference into a view tilted by kTiltDeg across direction `angle`
+// The affine map of the reference into a view tilted by tiltDeg across direction `angle`
 // (radians): rotate by -angle, compress x by cos(tilt), rotate back, then shift into a canvas
 // holding the whole image (its size in `canvas`).
-cv::Matx23d tiltMap(cv::Size size, double angle, cv::Size& canvas) {
-  const double c = std::cos(angle), s = std::sin(angle), t = std::cos(kTiltDeg * kPi / 180.0);
+cv::Matx23d tiltMap(cv::Size size, double tiltDeg, double angle, cv::Size& canvas) {
+  const double c = std::cos(angle), s = std::sin(angle), t = std::cos(tiltDeg * kPi / 180.0);
   const cv::Matx22d R(c, -s, s, c);
   const cv::Matx22d A = R * cv::Matx22d(t, 0, 0, 1) * R.t();
   double minX = 1e30, minY = 1e30, maxX = -1e30, maxY = -1e30;
@@ -94,16 +103,16 @@ KeypointHomographyRegistrar::KeypointHomographyRegistrar(const cv::Mat& referenc
                 " keypoints in the reference image (at least " +
                 std::to_string(ransac_.minInliers) + " needed)");
   // Synthetic tilted views (ASIFT-like): each blurred and warped, searched for keypoints, the
-  // positions mapped back into the reference.
-  for (int v = 0; v < params_.keypointTiltViews; ++v) {
+  // positions mapped back into the reference. A ring at kTiltDeg, then a steeper one.
+  const auto addTiltView = [&](double tiltDeg, double angle) {
     cv::Size canvas;
-    const cv::Matx23d A = tiltMap(gray.size(), kPi * v / params_.keypointTiltViews, canvas);
+    const cv::Matx23d A = tiltMap(gray.size(), tiltDeg, angle, canvas);
     cv::Mat tilted;
     // Anti-aliased compression (ASIFT: a Gaussian of SD 0.8 sqrt(t^2 - 1), t = 1 / cos(tilt),
     // across the compressed direction; isotropic here, which also softens the other direction
     // slightly and keeps it to one OpenCV call).
     cv::Mat blurred;
-    const double t = 1.0 / std::cos(kTiltDeg * kPi / 180.0);
+    const double t = 1.0 / std::cos(tiltDeg * kPi / 180.0);
     const double sigma = 0.8 * std::sqrt(t * t - 1.0);
     cv::GaussianBlur(gray, blurred, cv::Size(), sigma);
     cv::warpAffine(blurred, tilted, A, canvas, cv::INTER_LINEAR, cv::BORDER_CONSTANT,
@@ -127,7 +136,12 @@ KeypointHomographyRegistrar::KeypointHomographyRegistrar(const cv::Mat& referenc
     view.descriptors = keptDescriptors;
     if (static_cast<int>(view.keypoints.size()) >= ransac_.minInliers)
       views_.push_back(std::move(view));
-  }
+  };
+  for (int v = 0; v < params_.keypointTiltViews; ++v)
+    addTiltView(kTiltDeg, kPi * v / params_.keypointTiltViews);
+  // The steep ring is turned by half a step against the first: its directions fall between.
+  for (int v = 0; v < params_.keypointSteepTiltViews; ++v)
+    addTiltView(params_.keypointSteepTiltDeg, kPi * (v + 0.5) / params_.keypointSteepTiltViews);
   if (params_.keypoints == KeypointLayer::Orb && kZoomFinerLevels > 0) {
     // ORB gives level l a share of the features proportional to its area (1.2^-2l): the finer
     // levels take most unless the count grows by about their area, 1.44^levels.
@@ -164,11 +178,25 @@ KeypointRegistration KeypointHomographyRegistrar::registerFrame(const cv::Mat& f
   cv::Mat descriptors;
   detect(gray, params_.keypointDetectScale, keypoints, descriptors);
   // The plain reference first; the tilted views only when it gives no confident homography,
-  // then the found homography with the most inliers (or the plain view's failure).
-  KeypointRegistration best = registerToView(views_.front(), gray, keypoints, descriptors);
-  for (size_t v = 1; v < views_.size(); ++v) {
-    if (best.found && best.inliers >= params_.keypointConfidentInliers) break;
-    KeypointRegistration r = registerToView(views_[v], gray, keypoints, descriptors);
+  // then the found homography with the most inliers (or the plain view's failure). Each view's
+  // distances are computed once and serve both passes.
+  const auto confident = [&](const KeypointRegistration& r) {
+    return r.found && r.inliers >= params_.keypointConfidentInliers;
+  };
+  std::vector<cv::Mat> distances(views_.size());
+  KeypointRegistration best;
+  for (size_t v = 0; v < views_.size() && !confident(best); ++v) {
+    KeypointRegistration r = registerToView(views_[v], gray, keypoints, descriptors,
+                                            MatchPass::Distinctive, distances[v]);
+    if (v == 0 || (r.found && (!best.found || r.inliers > best.inliers))) best = std::move(r);
+  }
+  // A repeated pattern (bricks, tiles, windows) fails the ratio test at its true matches: the
+  // next unit looks alike. Without a confident homography, every view is matched once more
+  // one-to-one (mutual nearest neighbours, no ratio test) and fitted with MAGSAC++, whose
+  // scoring tolerates the many near-duplicate matches.
+  for (size_t v = 0; v < views_.size() && !confident(best) && params_.keypointOneToOne; ++v) {
+    KeypointRegistration r =
+        registerToView(views_[v], gray, keypoints, descriptors, MatchPass::OneToOne, distances[v]);
     if (r.found && (!best.found || r.inliers > best.inliers)) best = std::move(r);
   }
   return best;
@@ -176,42 +204,63 @@ KeypointRegistration KeypointHomographyRegistrar::registerFrame(const cv::Mat& f
 
 KeypointRegistration KeypointHomographyRegistrar::registerToView(
     const View& view, const cv::Mat& gray, const std::vector<cv::KeyPoint>& keypoints,
-    const cv::Mat& descriptors) const {
+    const cv::Mat& descriptors, MatchPass pass, cv::Mat& distance) const {
   KeypointRegistration out;
   out.frameKeypoints = static_cast<int>(keypoints.size());
   if (static_cast<int>(keypoints.size()) < ransac_.minInliers || view.descriptors.empty()) {
     out.failure = "only " + std::to_string(keypoints.size()) + " keypoints in the frame";
     return out;
   }
-  // All descriptor distances at once (frame rows x reference columns): the two nearest reference
+  // All descriptor distances at once (frame rows x reference columns): the nearest reference
   // keypoints of each frame keypoint (ratio test) and the nearest frame keypoint of each
   // reference keypoint (mutual check).
   // descriptorDistances, not cv::batchDistance: the same distances, and ORB's Hamming ones with
   // the CPU's popcount (this OpenCV's has none): the finer-level zoom view holds ~4x the keypoints.
-  const cv::Mat distance = descriptorDistances(descriptors, view.descriptors, norm_);
+  if (distance.empty()) distance = descriptorDistances(descriptors, view.descriptors, norm_);
   const int rows = distance.rows, cols = distance.cols;
   std::vector<float> columnBest(static_cast<size_t>(cols), std::numeric_limits<float>::max());
   std::vector<int> columnArg(static_cast<size_t>(cols), -1);
   std::vector<int> rowArg(static_cast<size_t>(rows), -1);
-  const float ratio = static_cast<float>(params_.keypointRatio);
+  const float ratio =
+      pass == MatchPass::OneToOne ? 1.0f : static_cast<float>(params_.keypointRatio);
+  // The ratio test compares the nearest with the nearest elsewhere in the reference: a keypoint
+  // the detector found twice at one place (two pyramid levels, or a tilted view) is no rival.
+  std::array<std::pair<float, int>, kNearest> nearest;
   for (int r = 0; r < rows; ++r) {
     const float* d = distance.ptr<float>(r);
-    float best = std::numeric_limits<float>::max(), second = best;
-    int arg = -1;
+    nearest.fill({std::numeric_limits<float>::max(), -1});
     for (int c = 0; c < cols; ++c) {
-      if (d[c] < best) {
-        second = best;
-        best = d[c];
-        arg = c;
-      } else if (d[c] < second) {
-        second = d[c];
+      if (d[c] < nearest.back().first) {
+        int k = kNearest - 1;
+        while (k > 0 && d[c] < nearest[static_cast<size_t>(k - 1)].first) {
+          nearest[static_cast<size_t>(k)] = nearest[static_cast<size_t>(k - 1)];
+          --k;
+        }
+        nearest[static_cast<size_t>(k)] = {d[c], c};
       }
       if (d[c] < columnBest[static_cast<size_t>(c)]) {
         columnBest[static_cast<size_t>(c)] = d[c];
         columnArg[static_cast<size_t>(c)] = r;
       }
     }
-    if (arg >= 0 && best < ratio * second) rowArg[static_cast<size_t>(r)] = arg;
+    const int arg = nearest[0].second;
+    if (arg < 0) continue;
+    if (pass == MatchPass::OneToOne) {
+      rowArg[static_cast<size_t>(r)] = arg;
+      continue;
+    }
+    const cv::KeyPoint& first = view.keypoints[static_cast<size_t>(arg)];
+    const float apart = std::max(kDuplicateMinPx, kDuplicateSizeFraction * first.size);
+    float second = nearest.back().first;  // all kNearest at one place: the last stands in
+    for (size_t k = 1; k < nearest.size() && nearest[k].second >= 0; ++k) {
+      const cv::Point2f delta =
+          view.keypoints[static_cast<size_t>(nearest[k].second)].pt - first.pt;
+      if (delta.dot(delta) > apart * apart) {
+        second = nearest[k].first;
+        break;
+      }
+    }
+    if (nearest[0].first < ratio * second) rowArg[static_cast<size_t>(r)] = arg;
   }
   std::vector<cv::Point2f> src, dst;
   for (int r = 0; r < rows; ++r) {
@@ -227,8 +276,9 @@ KeypointRegistration KeypointHomographyRegistrar::registerToView(
   }
   std::vector<uchar> mask;
   const double threshold = params_.keypointInlierThresholdPx * resolutionScale(gray.size());
-  const cv::Mat H = cv::findHomography(src, dst, cv::RANSAC, threshold, mask, kRansacIterations,
-                                       kRansacConfidence);
+  const cv::Mat H =
+      cv::findHomography(src, dst, pass == MatchPass::OneToOne ? cv::USAC_MAGSAC : cv::RANSAC,
+                         threshold, mask, kRansacIterations, kRansacConfidence);
   if (H.empty()) {
     out.failure = "no keypoint homography";
     return out;
@@ -241,7 +291,7 @@ KeypointRegistration KeypointHomographyRegistrar::registerToView(
   }
   // The view must be a plane in front of the camera (w > 0 at every inlier) and not degenerate
   // where the inliers are: the area ratio (Jacobian determinant) at their centroid within
-  // [min_determinant, 1 / min_determinant]. (det H itself is the area ratio at the reference's
+  // [1 / kMaxAreaRatio, kMaxAreaRatio]. (det H itself is the area ratio at the reference's
   // origin, which a zoomed, tilted view legitimately pushes past any bound.)
   cv::Point2d centroid(0, 0);
   bool inFront = true;
@@ -253,8 +303,8 @@ KeypointRegistration KeypointHomographyRegistrar::registerToView(
   const double w =
       out.H(2, 0) * centroid.x + out.H(2, 1) * centroid.y + out.H(2, 2);  // area ratio: det/w^3
   const double areaRatio = cv::determinant(out.H) / (w * w * w);
-  if (!inFront || !std::isfinite(areaRatio) || areaRatio < ransac_.minDeterminant ||
-      areaRatio > 1.0 / ransac_.minDeterminant) {
+  if (!inFront || !std::isfinite(areaRatio) || areaRatio < 1.0 / kMaxAreaRatio ||
+      areaRatio > kMaxAreaRatio) {
     out.failure = "degenerate keypoint homography";
     return out;
   }

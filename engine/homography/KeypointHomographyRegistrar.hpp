@@ -1,8 +1,10 @@
 #pragma once
 // KeypointHomographyRegistrar: a viewpoint-invariant first guess of the reference -> frame
-// homography for cold registration — ORB / AKAZE / SIFT keypoints (the reference's detected once),
-// mutual nearest-neighbour descriptor matches passing Lowe's ratio test, and a RANSAC homography.
-// It only predicts: HomographyTracker matches its correlation windows around this guess.
+// homography for cold registration — ORB / AKAZE / SIFT keypoints (the reference's detected once,
+// also on synthetic tilted views of it, ASIFT-like), mutual nearest-neighbour descriptor matches
+// passing Lowe's ratio test, and a RANSAC homography; failing a confident one, the mutual nearest
+// neighbours alone (one-to-one, for repeated patterns) with MAGSAC++. It only predicts:
+// HomographyTracker matches its correlation windows around this guess.
 #include <opencv2/core.hpp>
 #include <opencv2/features2d.hpp>
 #include <string>
@@ -47,10 +49,15 @@ class KeypointHomographyRegistrar {
     std::vector<cv::KeyPoint> keypoints;
     cv::Mat descriptors;
   };
-  // Descriptor matching of the frame's keypoints to one view and its RANSAC homography.
+  // Distinctive: mutual nearest neighbours passing the ratio test (keypoint_ratio), RANSAC.
+  // OneToOne: mutual nearest neighbours alone, MAGSAC++ (cv::USAC_MAGSAC).
+  enum class MatchPass { Distinctive, OneToOne };
+  // Descriptor matching of the frame's keypoints to one view and its robust homography.
+  // distance: the frame x view descriptor distances, computed here when empty.
   KeypointRegistration registerToView(const View& view, const cv::Mat& gray,
                                       const std::vector<cv::KeyPoint>& keypoints,
-                                      const cv::Mat& descriptors) const;
+                                      const cv::Mat& descriptors, MatchPass pass,
+                                      cv::Mat& distance) const;
 
   // Keypoints and descriptors of `gray`, detected at `scale` of its size (positions given in
   // `gray`'s pixels), the `features` strongest.

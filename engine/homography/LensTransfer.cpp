@@ -9,12 +9,13 @@ namespace reftrack {
 
 std::vector<cv::Point2d> transferThroughLens(const cv::Matx33d& H,
                                              const std::vector<cv::Point2d>& referencePixels,
-                                             const PinholeCamera& camera) {
+                                             const PinholeCamera& camera,
+                                             bool referenceThroughLens) {
   std::vector<cv::Point2f> ideal;
   ideal.reserve(referencePixels.size());
   for (const cv::Point2d& p : referencePixels)
     ideal.emplace_back(static_cast<float>(p.x), static_cast<float>(p.y));
-  ideal = camera.undistortPixels(ideal);
+  if (referenceThroughLens) ideal = camera.undistortPixels(ideal);
   std::vector<cv::Point2f> mapped;
   std::vector<bool> valid;
   for (const cv::Point2f& p : ideal) {

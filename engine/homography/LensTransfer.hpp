@@ -11,10 +11,13 @@
 namespace reftrack {
 
 // Recorded reference pixels -> recorded frame pixels under H (between undistorted pixels of
-// `camera`); without distortion this is transferPoint. NaN for a point H sends to infinity or
-// behind the camera (third homogeneous coordinate <= 0).
+// `camera`); without distortion this is transferPoint. referenceThroughLens false: the reference
+// comes from another camera and is used as recorded (its pixels are mapped by H as they are;
+// only the frame side is distorted). NaN for a point H sends to infinity or behind the camera
+// (third homogeneous coordinate <= 0).
 std::vector<cv::Point2d> transferThroughLens(const cv::Matx33d& H,
                                              const std::vector<cv::Point2d>& referencePixels,
-                                             const PinholeCamera& camera);
+                                             const PinholeCamera& camera,
+                                             bool referenceThroughLens = true);
 
 }  // namespace reftrack

@@ -213,7 +213,8 @@ bool RobustHomographyEstimator::acceptable(const cv::Matx33d& H) const {
 HomographyEstimate RobustHomographyEstimator::estimate(const std::vector<cv::Point2f>& src,
                                                        const std::vector<cv::Point2f>& dst,
                                                        cv::Size imageSize,
-                                                       const std::vector<float>& quality) const {
+                                                       const std::vector<float>& quality,
+                                                       cv::Size dstSize) const {
   requireMatchLists("robust homography", src, dst, quality);
   HomographyEstimate out;
   const int n = static_cast<int>(src.size());
@@ -223,7 +224,8 @@ HomographyEstimate RobustHomographyEstimator::estimate(const std::vector<cv::Poi
     return out;
   }
   const double spacing = params_.minSampleSpacingPx * resolutionScale(imageSize);
-  const double threshold = params_.inlierThresholdPx * resolutionScale(imageSize);
+  const double threshold =
+      params_.inlierThresholdPx * resolutionScale(dstSize.area() > 0 ? dstSize : imageSize);
   cv::RNG rng(static_cast<uint64_t>(params_.seed) + 0x9E3779B97F4A7C15ull);
 
   // Sampling order: best quality first when progressive (PROSAC).

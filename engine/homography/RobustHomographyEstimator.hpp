@@ -28,14 +28,15 @@ class RobustHomographyEstimator {
  public:
   explicit RobustHomographyEstimator(RansacParams params = {});  // throws on bad params
 
-  // src/dst: matched points (same length); imageSize: of the src image (scales the spacing).
+  // src/dst: matched points (same length); imageSize: of the src image (scales the spacing);
+  // dstSize: of the dst image (scales the inlier threshold; empty: imageSize).
   // quality: optional, one value per match (higher = more likely correct, e.g. the NCC score);
   // with progressive_sampling the samples are drawn from the best-ranked matches first.
   // Fails (success = false, with a reason) below min_inlier_ratio or min_inliers. Throws
   // reftrack::Error when the lists differ in length.
   HomographyEstimate estimate(const std::vector<cv::Point2f>& src,
                               const std::vector<cv::Point2f>& dst, cv::Size imageSize,
-                              const std::vector<float>& quality = {}) const;
+                              const std::vector<float>& quality = {}, cv::Size dstSize = {}) const;
 
   // Finite and |det(H / h33)| within [min_determinant, 1 / min_determinant].
   bool acceptable(const cv::Matx33d& H) const;

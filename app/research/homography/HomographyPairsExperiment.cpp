@@ -11,9 +11,11 @@
 
 #include "app/cli/ProgressBar.hpp"
 #include "app/research/baselines/OpenCvFeatureBaseline.hpp"
+#include "app/research/homography/HardHomographyPairs.hpp"
 #include "app/research/homography/HomographyGroundTruth.hpp"
 #include "app/simulator/SensorNoise.hpp"  // mixSeed
 #include "engine/core/Error.hpp"
+#include "engine/core/ThreadCpuClock.hpp"
 #include "engine/homography/HomographyTracker.hpp"
 
 namespace reftrack::app {
@@ -51,58 +53,15 @@ cv::Matx33d readHomography(const std::filesystem::path& file) {
   return cv::Matx33d(H);
 }
 
+// Thread CPU time of f (what one core spends on it, whatever else the machine runs).
 template <class F>
 double timedMs(F&& f) {
-  const auto t0 = std::chrono::steady_clock::now();
+  const double t0 = threadCpuMs();
   f();
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  return threadCpuMs() - t0;
 }
 
 }  // namespace
-
-cv::Matx33d syntheticViewHomography(cv::Size size, double tiltDeg, double azimuthDeg, double scale,
-                                    double rollDeg) {
-  const double f = size.width, cx = (size.width - 1) / 2.0, cy = (size.height - 1) / 2.0;
-  Eigen::Matrix3d K;
-  K << f, 0, cx, 0, f, cy, 0, 0, 1;
-  // Plane z = 0 in pixel units centred on the image; the reference camera sits at distance f.
-  Eigen::Matrix3d reference;
-  reference << 1, 0, 0, 0, 1, 0, 0, 0, f;
-  const double a = azimuthDeg * kPi / 180.0;
-  const Eigen::Matrix3d cameraToWorld =
-      Eigen::AngleAxisd(tiltDeg * kPi / 180.0, Eigen::Vector3d(std::cos(a), std::sin(a), 0))
-          .toRotationMatrix() *
-      Eigen::AngleAxisd(rollDeg * kPi / 180.0, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  const Eigen::Vector3d centre = -(f / scale) * cameraToWorld.col(2);
-  const Eigen::Matrix3d R = cameraToWorld.transpose();
-  Eigen::Matrix3d view;
-  view.col(0) = R.col(0);
-  view.col(1) = R.col(1);
-  view.col(2) = -R * centre;
-  const Eigen::Matrix3d He = K * view * (K * reference).inverse();
-  cv::Matx33d H;
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) H(r, c) = He(r, c) / He(2, 2);
-  return H;
-}
-
-cv::Mat synthesiseView(const cv::Mat& image, const cv::Matx33d& H, double noiseSigma,
-                       std::uint64_t seed) {
-  // Twice the resolution: x2 = 2 x1 + 0.5 (pixel centres), then area-averaged back down.
-  const cv::Matx33d up(2, 0, 0.5, 0, 2, 0.5, 0, 0, 1);
-  cv::Mat big, out;
-  cv::warpPerspective(image, big, up * H, image.size() * 2, cv::INTER_LINEAR, cv::BORDER_CONSTANT,
-                      cv::Scalar::all(0));
-  cv::resize(big, out, image.size(), 0, 0, cv::INTER_AREA);
-  if (noiseSigma > 0) {  // Gaussian sensor noise, deterministic in seed
-    cv::Mat noise(out.size(), CV_32FC(out.channels())), noisy;
-    cv::RNG(seed).fill(noise, cv::RNG::NORMAL, 0.0, noiseSigma);
-    out.convertTo(noisy, noise.type());
-    noisy += noise;
-    noisy.convertTo(out, image.type());
-  }
-  return out;
-}
 
 std::vector<HomographyPair> buildHomographyPairs(const std::filesystem::path& dataDir,
                                                  double noiseSigma, std::uint64_t seed) {
@@ -131,7 +90,7 @@ std::vector<HomographyPair> buildHomographyPairs(const std::filesystem::path& da
                        reference,
                        cv::imread(img.string(), cv::IMREAD_GRAYSCALE),
                        readHomography(hf)};
-      if (p.frame.size() != reference.size()) continue;  // the tracker needs equal sizes
+      if (p.frame.empty()) throw Error("pairs: cannot read " + img.string());
       out.push_back(std::move(p));
     }
     for (const ViewSpec& v : kViews) {
@@ -140,7 +99,7 @@ std::vector<HomographyPair> buildHomographyPairs(const std::filesystem::path& da
       char label[96];
       std::snprintf(label, sizeof label, "tilt %.0f az %.0f scale %.1f roll %.0f", v.tiltDeg,
                     v.azimuthDeg, v.scale, v.rollDeg);
-      out.push_back({name, v.kind, label, reference,
+      out.push_back({name + "-views", v.kind, label, reference,
                      synthesiseView(reference, H, noiseSigma, mixSeed(seed, ++n)), H});
     }
   }
@@ -150,6 +109,8 @@ std::vector<HomographyPair> buildHomographyPairs(const std::filesystem::path& da
 void PairsOptions::check() const {
   if (!(noiseSigma >= 0.0 && noiseSigma <= 100.0))
     throw Error("pairs: noiseSigma must be in [0, 100]");
+  if (wallSupersample < 1 || wallSupersample > 8)
+    throw Error("pairs: wallSupersample must be in [1, 8]");
   params.check();
 }
 
@@ -157,6 +118,18 @@ PairsResult runPairsExperiment(const PairsOptions& options) {
   options.check();
   PairsResult out;
   out.pairs = buildHomographyPairs(options.dataDir, options.noiseSigma, options.seed);
+  if (!options.broadViews)
+    std::erase_if(out.pairs, [](const HomographyPair& p) { return p.kind != "photometric"; });
+  if (options.hardSets)
+    for (HomographyPair& p : buildHardHomographyPairs(options.dataDir, options.noiseSigma,
+                                                      options.seed, options.wallSupersample))
+      out.pairs.push_back(std::move(p));
+  if (!options.onlySets.empty())
+    std::erase_if(out.pairs, [&](const HomographyPair& p) {
+      return std::find(options.onlySets.begin(), options.onlySets.end(), p.sequence) ==
+             options.onlySets.end();
+    });
+  if (out.pairs.empty()) throw Error("pairs: no pair of the sets asked for");
   TrackerParams nccOnly = options.params;
   nccOnly.homography.keypoints = KeypointLayer::None;
   const std::vector<std::string> names = {"reftrack", "reftrack-ncc", "sift", "akaze", "orb"};
@@ -185,6 +158,7 @@ PairsResult runPairsExperiment(const PairsOptions& options) {
             t->reset();
             const HomographyTrackResult r = t->track(p.frame);
             o.found = r.tracked;
+            o.failure = r.failure;
             H = r.H;
           } else {
             const FeatureBaselineResult r = b->registerFrame(p.frame);

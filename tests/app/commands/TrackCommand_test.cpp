@@ -39,34 +39,52 @@ TEST(TrackCommand, HomographyModeWritesTheCsv) {
   EXPECT_NE(calibrated.out.find("5 frames, 5 tracked"), std::string::npos) << calibrated.out;
 }
 
-TEST(TrackCommand, AFrameOfAnotherSizeMidStreamKeepsEverythingWrittenBeforeIt) {
+// Frame 4 of 6 comes from another camera (640x480 among 320x240 frames). Without --camera an
+// image folder may hold frames of any sizes (photos from several cameras): every frame is
+// tracked, written to the CSV and recorded (fitted into the first frame's size). With the
+// frames' --camera, whose size it is not, the input ends at it and everything written before it
+// is kept.
+TEST(TrackCommand, AFrameOfAnotherSizeMidStreamIsTrackedOrEndsTheInputWithACamera) {
   const auto dir = freshTempDir("TrackCommand_size_change");
   const auto sim = runReftrack(
       "simulate --preset static --frames 6 --size 320x240 --out " + (dir / "sim").string(), dir);
   ASSERT_EQ(sim.exitCode, 0) << sim.err;
-  // Frame 4 of 6 comes from another camera: 640x480.
   const auto frames = dir / "sim" / "frames";
   cv::Mat big;
   cv::resize(cv::imread((frames / "000004.png").string()), big, cv::Size(640, 480));
   cv::imwrite((frames / "000004.png").string(), big);
+  const auto countLines = [](const std::filesystem::path& csv) {
+    std::ifstream in(csv);
+    int lines = 0;
+    for (std::string l; std::getline(in, l);) ++lines;
+    return lines;
+  };
+  const auto countFrames = [](const std::filesystem::path& mp4) {
+    cv::VideoCapture video(mp4.string());
+    int decoded = 0;
+    for (cv::Mat f; video.read(f);) ++decoded;
+    return decoded;
+  };
+  const std::string track = "track --reference " + (dir / "sim" / "reference_a.png").string() +
+                            " --input " + frames.string();
+
+  const auto any = runReftrack(track + " --out-csv " + (dir / "any.csv").string() + " --record " +
+                                   (dir / "any.mp4").string(),
+                               dir);
+  ASSERT_EQ(any.exitCode, 0) << any.err;
+  EXPECT_NE(any.out.find("6 frames, 6 tracked"), std::string::npos) << any.out;
+  EXPECT_EQ(countLines(dir / "any.csv"), 1 + 6);
+  EXPECT_EQ(countFrames(dir / "any.mp4"), 6);
+
   const auto r =
-      runReftrack("track --reference " + (dir / "sim" / "reference_a.png").string() + " --input " +
-                      frames.string() + " --out-csv " + (dir / "out.csv").string() + " --record " +
-                      (dir / "out.mp4").string(),
+      runReftrack(track + " --camera " + (dir / "sim" / "camera.yml").string() + " --out-csv " +
+                      (dir / "out.csv").string() + " --record " + (dir / "out.mp4").string(),
                   dir);
   EXPECT_EQ(r.exitCode, 1) << r.out;
   EXPECT_NE(r.err.find("is 640x480"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("outputs written up to frame 3"), std::string::npos) << r.err;
-  // The four frames before it are kept: CSV rows and recorded frames.
-  std::ifstream in(dir / "out.csv");
-  int lines = 0;
-  for (std::string l; std::getline(in, l);) ++lines;
-  EXPECT_EQ(lines, 1 + 4);
-  cv::VideoCapture video((dir / "out.mp4").string());
-  ASSERT_TRUE(video.isOpened());
-  int decoded = 0;
-  for (cv::Mat f; video.read(f);) ++decoded;
-  EXPECT_EQ(decoded, 4);
+  EXPECT_EQ(countLines(dir / "out.csv"), 1 + 4);
+  EXPECT_EQ(countFrames(dir / "out.mp4"), 4);
 }
 
 TEST(TrackCommand, AFileSizeLimitFailsTheRecordingClearlyAndKeepsTheCsv) {

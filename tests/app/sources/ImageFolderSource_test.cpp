@@ -86,6 +86,12 @@ TEST(ImageFolderSource, SizeChangeIsNamed) {
   ASSERT_TRUE(source.next());
   const std::string message = test::errorMessage([&] { source.next(); });
   EXPECT_NE(message.find("1.png' is 16x12"), std::string::npos) << message;
+  // Photos from several cameras (homography mode): every size is read.
+  ImageFolderSource any(dir.string(), 30.0, true);
+  ASSERT_TRUE(any.next());
+  const std::optional<Frame> second = any.next();
+  ASSERT_TRUE(second);
+  EXPECT_EQ(second->image.size(), cv::Size(16, 12));
 }
 
 TEST(ImageFolderSource, MissingOrEmptyFolderIsAnError) {

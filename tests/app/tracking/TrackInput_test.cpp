@@ -69,3 +69,21 @@ TEST(TrackInput, AWrongSizedFirstFrameThrows) {
   EXPECT_NE(test::errorMessage([&] { input.requireFrames(); }).find("frame 0 is 40x30"),
             std::string::npos);
 }
+
+// Homography mode without a camera: frames of any sizes, an image folder's too (photos from
+// several cameras); frameSize() follows them.
+TEST(TrackInput, AnySizeReadsFramesOfEverySize) {
+  const std::string dir = writeFrames("TrackInput_any", {{40, 30}, {40, 30}, {32, 24}});
+  TrackInput input = TrackInput::anySize(dir, {64, 48}, -1, false);
+  EXPECT_EQ(input.frameSize(), cv::Size());
+  ASSERT_TRUE(input.next().has_value());
+  EXPECT_EQ(input.frameSize(), cv::Size(40, 30));
+  ASSERT_TRUE(input.next().has_value());
+  const std::optional<Frame> third = input.next();
+  ASSERT_TRUE(third.has_value());
+  EXPECT_EQ(third->image.size(), cv::Size(32, 24));
+  EXPECT_EQ(input.frameSize(), cv::Size(32, 24));
+  EXPECT_FALSE(input.next().has_value());
+  EXPECT_EQ(input.framesRead(), 3);
+  EXPECT_NO_THROW(input.throwIfCutShort());
+}

@@ -7,6 +7,7 @@
 #include <iostream>
 #include <opencv2/imgproc.hpp>
 
+#include "ErrorMessage.hpp"
 #include "app/research/homography/HomographyGroundTruth.hpp"
 #include "app/simulator/SceneSimulator.hpp"
 #include "engine/core/Error.hpp"
@@ -74,8 +75,8 @@ TEST_F(HomographyFrameTrackerTest, ResultCarriesInverseHRotationPoseAndMappedLab
     EXPECT_LT(std::hypot(q.x - t.x, q.y - t.y), 0.5) << k;  // the < 0.5 px annotation target
     EXPECT_EQ(r.debug.corners.size(), tracker.last().frameCorners.size());
     EXPECT_EQ(static_cast<int>(r.debug.matches.size()), r.inliers);
-    // corners, prediction, matching, robust fit, keypoints, refine
-    EXPECT_EQ(r.stages.size(), 6u);
+    // corners, prediction, matching, robust fit, keypoints, refine, verify
+    EXPECT_EQ(r.stages.size(), 7u);
   }
 }
 
@@ -143,9 +144,14 @@ TEST_F(HomographyFrameTrackerTest, ApplyParamsRebuildsOrRejects) {
   p.ransac.minInlierRatio = 2.0;
   EXPECT_THROW(tracker.applyParams(p), Error);
   EXPECT_EQ(tracker.process(seq.sim->renderFrame(1), 1, 0).status, "tracking");
-  EXPECT_THROW(HomographyFrameTracker(seq.sim->renderReference('A'), TrackerParams{},
-                                      PinholeCamera::fromFieldOfView({640, 480}, 60)),
-               Error);
+  // A camera of another size than the reference is the frames' camera (the reference is a
+  // picture from another one): accepted, and a frame not of its size is refused by name.
+  HomographyFrameTracker other(seq.sim->renderReference('A'), TrackerParams{},
+                               PinholeCamera::fromFieldOfView({640, 480}, 60));
+  EXPECT_FALSE(other.referenceSharesCamera());
+  const std::string message =
+      test::errorMessage([&] { other.process(seq.sim->renderFrame(2), 2, 0); });
+  EXPECT_NE(message.find("calibrated for 640x480"), std::string::npos) << message;
 }
 
 // Robustness target (issue 4): sequences with motion blur, a +-30% brightness change or a

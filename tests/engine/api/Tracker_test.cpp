@@ -221,6 +221,34 @@ TEST(Tracker, HomographyModeFromAReferenceImageAndCamera) {
             Tracker::State::Tracking);
 }
 
+// A reference photographed by another camera (320x240) tracked in frames of 480x360: accepted
+// without a camera file (imageSize() empty: any size), registered to the same accuracy; given
+// the frames' camera, the frames must have its size and no rotation pose is reported (the
+// reference's intrinsics are unknown).
+TEST(Tracker, HomographyModeWithFramesOfAnotherSizeThanTheReference) {
+  const std::filesystem::path dir = test::freshTempDir("api_tracker_sizes");
+  const cv::Size refSize(320, 240), frameSize(480, 360);
+  const cv::Mat reference = test::texturedImage(refSize, 33);
+  ASSERT_TRUE(cv::imwrite((dir / "reference.png").string(), reference));
+  PinholeCamera::fromFieldOfView(frameSize, 60.0).save(dir / "camera.yml");
+  for (const bool camera : {false, true}) {
+    Tracker tracker = camera ? Tracker::openReference(dir / "reference.png", dir / "camera.yml")
+                             : Tracker::openReference(dir / "reference.png");
+    EXPECT_EQ(tracker.imageSize(), camera ? frameSize : cv::Size());
+    EXPECT_EQ(tracker.referenceSize(), refSize);
+    for (int k = 0; k < 5; ++k) {
+      const cv::Matx33d truth = cv::Matx33d(1.5, 0, 0, 0, 1.5, 0, 0, 0, 1) *
+                                test::tiltedView(refSize, 8.0 + k, 0.95, 5.0 * k);
+      const Tracker::Result r =
+          tracker.track(test::withNoise(test::warpedBy(reference, truth, frameSize), 2.0, 60 + k));
+      ASSERT_EQ(r.state, Tracker::State::Tracking) << k << ": " << r.reason;
+      ASSERT_TRUE(r.homography.has_value());
+      EXPECT_FALSE(r.worldToCamera.has_value());
+      EXPECT_LT(test::cornerError(*r.homography, truth, frameSize), 0.5) << k;
+    }
+  }
+}
+
 TEST(Tracker, BadInputsAreClearErrors) {
   const std::filesystem::path dir = test::freshTempDir("api_tracker_errors");
   const auto message = [](const auto& open) {
@@ -236,11 +264,14 @@ TEST(Tracker, BadInputsAreClearErrors) {
             std::string::npos);
   const cv::Mat reference = test::texturedImage({320, 240}, 32);
   ASSERT_TRUE(cv::imwrite((dir / "reference.png").string(), reference));
+  // The camera is the frames': a frame of another size than its is an error naming both.
   PinholeCamera::fromFieldOfView({640, 480}, 60.0).save(dir / "camera.yml");
-  EXPECT_NE(message([&] {
-              Tracker::openReference(dir / "reference.png", dir / "camera.yml");
-            }).find("640x480"),
-            std::string::npos);
+  Tracker withCamera = Tracker::openReference(dir / "reference.png", dir / "camera.yml");
+  EXPECT_EQ(withCamera.imageSize(), cv::Size(640, 480));
+  EXPECT_EQ(withCamera.referenceSize(), cv::Size(320, 240));
+  const std::string wrongSize = message([&] { withCamera.track(reference); });
+  EXPECT_NE(wrongSize.find("320x240"), std::string::npos) << wrongSize;
+  EXPECT_NE(wrongSize.find("camera is 640x480"), std::string::npos) << wrongSize;
   TrackerOptions options;
   options.params = dir / "absent.yml";
   EXPECT_NE(message([&] {

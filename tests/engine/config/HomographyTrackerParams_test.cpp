@@ -27,6 +27,16 @@ TEST(HomographyTrackerParams, RoundTrip) {
   in.refinePoints = 0;
   in.keypointTiltViews = 2;
   in.keypointConfidentInliers = 30;
+  in.keypointSteepTiltViews = 3;
+  in.keypointSteepTiltDeg = 62.5;
+  in.keypointOneToOne = false;
+  in.verify = false;
+  in.verifyMinScore = 0.6;
+  in.verifySearchPx = 5.0;
+  in.verifyTolerancePx = 0.8;
+  in.verifyMinFraction = 0.4;
+  in.verifyMinSpread = 0.7;
+  in.verifyMaxOffsetPx = 1.2;
   HomographyTrackerParams out;
   roundTrip(in, out);
   EXPECT_DOUBLE_EQ(out.guidedSearchHalfSizePx, 4.5);
@@ -45,6 +55,39 @@ TEST(HomographyTrackerParams, RoundTrip) {
   EXPECT_EQ(out.refinePoints, 0);
   EXPECT_EQ(out.keypointTiltViews, 2);
   EXPECT_EQ(out.keypointConfidentInliers, 30);
+  EXPECT_EQ(out.keypointSteepTiltViews, 3);
+  EXPECT_DOUBLE_EQ(out.keypointSteepTiltDeg, 62.5);
+  EXPECT_FALSE(out.keypointOneToOne);
+  EXPECT_FALSE(out.verify);
+  EXPECT_DOUBLE_EQ(out.verifyMinScore, 0.6);
+  EXPECT_DOUBLE_EQ(out.verifySearchPx, 5.0);
+  EXPECT_DOUBLE_EQ(out.verifyTolerancePx, 0.8);
+  EXPECT_DOUBLE_EQ(out.verifyMinFraction, 0.4);
+  EXPECT_DOUBLE_EQ(out.verifyMinSpread, 0.7);
+  EXPECT_DOUBLE_EQ(out.verifyMaxOffsetPx, 1.2);
+}
+
+TEST(HomographyTrackerParams, BadVerificationAndSteepTiltFieldsAreNamed) {
+  HomographyTrackerParams p;
+  p.keypointSteepTiltDeg = 85;
+  EXPECT_NE(errorMessage([&] { p.check(); }).find("homography.keypoint_steep_tilt_deg"),
+            std::string::npos);
+  p = {};
+  p.keypointSteepTiltViews = 17;
+  EXPECT_NE(errorMessage([&] { p.check(); }).find("homography.keypoint_steep_tilt_views"),
+            std::string::npos);
+  p = {};
+  p.verifyMinFraction = 1.5;
+  EXPECT_NE(errorMessage([&] { p.check(); }).find("homography.verify_min_fraction"),
+            std::string::npos);
+  p = {};
+  p.verifyMaxOffsetPx = 0;
+  EXPECT_NE(errorMessage([&] { p.check(); }).find("homography.verify_max_offset_px"),
+            std::string::npos);
+  p = {};
+  p.verifySearchPx = 0.5;
+  EXPECT_NE(errorMessage([&] { p.check(); }).find("homography.verify_search_px"),
+            std::string::npos);
 }
 
 TEST(HomographyTrackerParams, KeypointLayerNames) {

@@ -80,4 +80,27 @@ inline cv::Matx33d tiltedView(cv::Size size, double tiltDeg, double scale, doubl
   return H * (1.0 / H(2, 2));
 }
 
+// A brick wall in running bond (a repeated pattern): bricks of brickW x brickH pixels (joint
+// `joint` px, light mortar), each brick its own grey level (in [70, 70 + shades)) with up to
+// `speckles` darker and lighter speckles, slightly blurred. Near-duplicates everywhere: every
+// brick corner looks alike.
+inline cv::Mat brickWallImage(cv::Size size, uint64_t seed, int brickW = 48, int brickH = 16,
+                              int joint = 3, int speckles = 3, int shades = 50) {
+  cv::RNG rng(seed);
+  cv::Mat img(size, CV_8UC1, cv::Scalar(190));
+  for (int row = 0, y = 0; y < size.height; ++row, y += brickH + joint) {
+    const int shift = (row % 2) * (brickW + joint) / 2;
+    for (int x = -shift; x < size.width; x += brickW + joint) {
+      const cv::Rect brick(x, y, brickW, brickH);
+      cv::rectangle(img, brick, cv::Scalar(rng.uniform(70, 70 + shades)), cv::FILLED);
+      for (int k = rng.uniform(0, speckles + 1); k > 0; --k)
+        cv::circle(img, cv::Point(x + rng.uniform(2, brickW - 2), y + rng.uniform(2, brickH - 2)),
+                   rng.uniform(1, 3), cv::Scalar(rng.uniform(0, 2) ? 50 : 140), cv::FILLED,
+                   cv::LINE_AA);
+    }
+  }
+  cv::GaussianBlur(img, img, cv::Size(0, 0), 0.7);
+  return img;
+}
+
 }  // namespace reftrack::test

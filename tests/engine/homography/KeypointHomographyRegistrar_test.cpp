@@ -98,11 +98,15 @@ TEST(KeypointHomographyRegistrar, TiltedReferenceViewsRegisterSteepViews) {
   const cv::Mat frame = test::withNoise(test::warpedBy(reference, truth), 2.0, 4);
   HomographyTrackerParams plain = layer(KeypointLayer::Orb);
   plain.keypointTiltViews = 0;
+  plain.keypointSteepTiltViews = 0;
   HomographyTrackerParams tilted = layer(KeypointLayer::Orb);
   tilted.keypointConfidentInliers = 100000;  // always try every view: the best one is kept
+  tilted.keypointSteepTiltViews = 0;
   const KeypointHomographyRegistrar one(reference, plain), five(reference, tilted);
   EXPECT_EQ(one.views(), 2);   // the reference, and (ORB) the reference with finer levels
   EXPECT_EQ(five.views(), 6);  // and four tilted views
+  HomographyTrackerParams steep = layer(KeypointLayer::Orb);
+  EXPECT_EQ(KeypointHomographyRegistrar(reference, steep).views(), 11);  // and five at 65 deg
   EXPECT_EQ(five.referenceKeypoints(), one.referenceKeypoints());
   const KeypointRegistration a = one.registerFrame(frame), b = five.registerFrame(frame);
   ASSERT_TRUE(b.found) << b.failure;

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <opencv2/imgcodecs.hpp>
 
 #include "TestPaths.hpp"
@@ -75,7 +76,7 @@ TEST(HomographyPairsExperiment, BuildsAndRegistersPairsOfASequenceFolder) {
   EXPECT_LT(cv::norm(pairs[0].truth - H12), 1e-12);
   int viewpoint = 0, zoom = 0;
   for (const HomographyPair& p : pairs) {
-    EXPECT_EQ(p.sequence, "seq");
+    EXPECT_EQ(p.sequence, p.kind == "photometric" ? "seq" : "seq-views");
     EXPECT_EQ(p.frame.size(), size);
     viewpoint += p.kind == "viewpoint" ? 1 : 0;
     zoom += p.kind == "zoom-rotation" ? 1 : 0;
@@ -85,6 +86,7 @@ TEST(HomographyPairsExperiment, BuildsAndRegistersPairsOfASequenceFolder) {
 
   PairsOptions o;
   o.dataDir = dir;
+  o.hardSets = false;  // HardHomographyPairs_test covers those
   const PairsResult r = runPairsExperiment(o);
   ASSERT_EQ(r.methods.size(), 5u);
   EXPECT_EQ(r.methods[0].name, "reftrack");
@@ -99,6 +101,54 @@ TEST(HomographyPairsExperiment, BuildsAndRegistersPairsOfASequenceFolder) {
   EXPECT_EQ(wrong, 0);
   EXPECT_GE(registered, 17);
 
+  // Only the sets asked for; a set that is not there is an error.
+  o.onlySets = {"seq"};
+  EXPECT_EQ(runPairsExperiment(o).pairs.size(), 1u);
+  o.onlySets = {"graf-sim"};
+  EXPECT_THROW(runPairsExperiment(o), Error);
   EXPECT_THROW(buildHomographyPairs(dir / "seq", 2.0, 1), Error);  // no sequence folder inside
   EXPECT_THROW(buildHomographyPairs(dir / "missing", 2.0, 1), Error);
+}
+
+// The repeated-texture sets of the experiment (issue 26): the simulated brick wall (reference
+// 1000x700, frames 880x680 from another camera, 20-60 degrees) and the tiles (800x600 -> 640x480,
+// zoom and rotation), registered cold by the tracker and the OpenCV peers in one run. The
+// tracker reports no registration more than 3 px off on either set and registers more pairs
+// within 3 px than each peer; of the brick wall's 5 views at least 4 (the issue's target is 2).
+// Measured (walls rendered with 2 x 2 rays per pixel to keep the test short): reftrack all 10
+// within 2.6 px; SIFT 5, AKAZE 5, ORB 3, with ORB 15.9 and 29.6 px off on two tiles views.
+TEST(HomographyPairsExperiment, RegistersTheRepeatedTextureSetsWithoutAWrongRegistration) {
+  const auto dir = test::freshTempDir("pairs_repeated_texture");
+  std::filesystem::create_directories(dir / "seq");
+  cv::imwrite((dir / "seq" / "img1.png").string(), test::texturedImage({320, 240}, 53));
+  PairsOptions o;
+  o.dataDir = dir;
+  o.broadViews = false;
+  o.onlySets = {"wall-sim", "tiles-sim"};
+  o.wallSupersample = 2;
+  const PairsResult r = runPairsExperiment(o);
+  ASSERT_EQ(r.pairs.size(), 10u);
+  ASSERT_EQ(r.methods[0].name, "reftrack");
+  int wall = 0, tiles = 0;
+  std::vector<int> within(r.methods.size(), 0);
+  for (size_t m = 0; m < r.methods.size(); ++m)
+    for (const PairOutcome& o2 : r.methods[m].outcomes)
+      within[m] += o2.found && o2.cornerErrorPx <= 3.0 ? 1 : 0;
+  for (size_t i = 0; i < r.pairs.size(); ++i) {
+    const PairOutcome& own = r.methods[0].outcomes[i];
+    std::printf("%s %s: reftrack %s %.2f px, %.1f ms", r.pairs[i].sequence.c_str(),
+                r.pairs[i].label.c_str(), own.found ? "found" : "lost",
+                own.found ? own.cornerErrorPx : -1.0, own.milliseconds);
+    for (size_t m = 2; m < r.methods.size(); ++m)
+      std::printf("; %s %.2f", r.methods[m].name.c_str(),
+                  r.methods[m].outcomes[i].found ? r.methods[m].outcomes[i].cornerErrorPx : -1.0);
+    std::printf("\n");
+    if (!own.found) continue;
+    EXPECT_LE(own.cornerErrorPx, 3.0) << r.pairs[i].sequence << " " << r.pairs[i].label;
+    (r.pairs[i].sequence == "wall-sim" ? wall : tiles) += own.cornerErrorPx <= 3.0 ? 1 : 0;
+  }
+  EXPECT_GE(wall, 4);
+  EXPECT_GE(tiles, 4);
+  for (size_t m = 2; m < r.methods.size(); ++m)
+    EXPECT_GT(within[0], within[m]) << r.methods[m].name;
 }

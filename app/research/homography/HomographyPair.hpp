@@ -1,0 +1,18 @@
+#pragma once
+// HomographyPair: one registration problem of the pairs experiments — a reference image, a frame
+// of the same planar scene (any sizes: the frame may come from another camera) and the exact
+// reference -> frame homography.
+#include <opencv2/core.hpp>
+#include <string>
+
+namespace reftrack::app {
+
+struct HomographyPair {
+  std::string sequence;  // the pair set (pairs of one set share their reference)
+  std::string kind;      // "photometric", "viewpoint" or "zoom-rotation"
+  std::string label;
+  cv::Mat reference, frame;  // grey
+  cv::Matx33d truth;         // reference -> frame
+};
+
+}  // namespace reftrack::app
