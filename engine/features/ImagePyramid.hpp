@@ -16,6 +16,12 @@ class ImagePyramid {
   // level < 0. Not thread-safe (levels are built lazily); returned references stay valid.
   const cv::Mat& level(int level) const;
   const cv::Mat& image() const { return levels_.front(); }
+  // diag(f, f, 1) for f = 2^level: level pixels -> level-0 pixels (cv::pyrDown centres level
+  // pixel u on level-0 pixel 2u).
+  static cv::Matx33d levelToImage(int level) {
+    const double f = static_cast<double>(1 << level);
+    return cv::Matx33d(f, 0, 0, 0, f, 0, 0, 0, 1);
+  }
 
  private:
   mutable std::deque<cv::Mat> levels_;  // a deque: references to built levels stay valid

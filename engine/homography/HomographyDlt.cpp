@@ -156,6 +156,14 @@ cv::Point2d transferPoint(const cv::Matx33d& H, cv::Point2d p) {
           (H(1, 0) * p.x + H(1, 1) * p.y + H(1, 2)) / w};
 }
 
+cv::Matx22d transferJacobian(const cv::Matx33d& H, cv::Point2d p) {
+  const double w = H(2, 0) * p.x + H(2, 1) * p.y + H(2, 2);
+  const double u = (H(0, 0) * p.x + H(0, 1) * p.y + H(0, 2)) / w;
+  const double v = (H(1, 0) * p.x + H(1, 1) * p.y + H(1, 2)) / w;
+  return cv::Matx22d((H(0, 0) - u * H(2, 0)) / w, (H(0, 1) - u * H(2, 1)) / w,
+                     (H(1, 0) - v * H(2, 0)) / w, (H(1, 1) - v * H(2, 1)) / w);
+}
+
 double transferError(const cv::Matx33d& H, cv::Point2f src, cv::Point2f dst) {
   const cv::Point2d q = transferPoint(H, cv::Point2d(src.x, src.y));
   return std::hypot(q.x - dst.x, q.y - dst.y);

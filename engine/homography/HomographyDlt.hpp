@@ -26,6 +26,8 @@ std::optional<cv::Matx33d> homographyFromFourPoints(const std::vector<cv::Point2
 
 // H applied to a point (nullopt-free: returns NaN when the point maps to infinity).
 cv::Point2d transferPoint(const cv::Matx33d& H, cv::Point2d p);
+// Jacobian of p -> H p (dehomogenised) at p: H's local affine map there.
+cv::Matx22d transferJacobian(const cv::Matx33d& H, cv::Point2d p);
 // Euclidean transfer error |H src - dst| in pixels.
 double transferError(const cv::Matx33d& H, cv::Point2f src, cv::Point2f dst);
 

@@ -54,17 +54,6 @@ double narrowestSpread(const std::vector<cv::Point2f>& points, const std::vector
   return std::sqrt(std::max(0.0, mean - std::sqrt(half * half + sxy * sxy)));
 }
 
-// Jacobian of the map p -> H p (dehomogenised) at p.
-cv::Matx22f jacobianAt(const cv::Matx33d& H, cv::Point2d p) {
-  const double w = H(2, 0) * p.x + H(2, 1) * p.y + H(2, 2);
-  const double u = (H(0, 0) * p.x + H(0, 1) * p.y + H(0, 2)) / w;
-  const double v = (H(1, 0) * p.x + H(1, 1) * p.y + H(1, 2)) / w;
-  return cv::Matx22f(static_cast<float>((H(0, 0) - u * H(2, 0)) / w),
-                     static_cast<float>((H(0, 1) - u * H(2, 1)) / w),
-                     static_cast<float>((H(1, 0) - v * H(2, 0)) / w),
-                     static_cast<float>((H(1, 1) - v * H(2, 1)) / w));
-}
-
 // Milliseconds since `t`, which moves on to now (for consecutive stage timings).
 double lap(std::chrono::steady_clock::time_point& t) {
   const auto now = std::chrono::steady_clock::now();
@@ -89,7 +78,7 @@ int magnificationLevel(const cv::Matx33d& H, cv::Size size) {
   const cv::Point2d centre((size.width - 1) / 2.0, (size.height - 1) / 2.0);
   const cv::Point2d r = transferPoint(H.inv(), centre);
   if (!std::isfinite(r.x) || !std::isfinite(r.y)) return 0;
-  const cv::Matx22f J = jacobianAt(H, r);
+  const cv::Matx22f J = transferJacobian(H, r);
   const double m = std::sqrt(
       std::abs(static_cast<double>(J(0, 0)) * J(1, 1) - static_cast<double>(J(0, 1)) * J(1, 0)));
   if (!(m > 0) || !std::isfinite(m)) return 0;
@@ -117,13 +106,6 @@ double largestShift(const cv::Matx33d& a, const cv::Matx33d& b, cv::Size size) {
     worst = std::max(worst, std::isfinite(d) ? d : std::numeric_limits<double>::infinity());
   }
   return worst;
-}
-
-// diag(f, f, 1): level pixels -> full-resolution pixels for f = 2^level (cv::pyrDown centres
-// level pixel u on full-resolution pixel 2u).
-cv::Matx33d levelScaling(int level) {
-  const double f = static_cast<double>(1 << level);
-  return cv::Matx33d(f, 0, 0, 0, f, 0, 0, 0, 1);
 }
 
 }  // namespace
@@ -302,7 +284,8 @@ void HomographyTracker::matchAndFit(Attempt& a, const cv::Mat& gray, const Refer
       const cv::Point2d q = transferPoint(*guide, cv::Point2d(ref.points[i].x, ref.points[i].y));
       const bool reachable =
           q.x > -reach && q.y > -reach && q.x < gray.cols + reach && q.y < gray.rows + reach;
-      maps[i] = reachable ? jacobianAt(Hinv, q) : cv::Matx22f(nan, nan, nan, nan);
+      maps[i] =
+          reachable ? cv::Matx22f(transferJacobian(Hinv, q)) : cv::Matx22f(nan, nan, nan, nan);
     }
     const NccPatches warpedRef =
         NccPatches::warped(refGray_, ref.points, maps, params_.correlation.halfWindow);
@@ -493,7 +476,8 @@ HomographyTracker::Attempt HomographyTracker::alignedAttempt(const ImagePyramid&
   std::optional<ImagePyramid> levelPyramid;
   if (level > 0) levelPyramid.emplace(frame.level(level));
   const ImagePyramid& work = levelPyramid ? *levelPyramid : frame;
-  const cv::Matx33d S = levelScaling(level), Sinv = levelScaling(level).inv();
+  const cv::Matx33d S = ImagePyramid::levelToImage(level),
+                    Sinv = ImagePyramid::levelToImage(level).inv();
   // The start predicts; the reference corners matched around it with warped windows give the
   // result (the tracking set, then the denser one, as while tracking).
   const int radius =

@@ -35,22 +35,6 @@ constexpr int kMaxLevels = 5;
 constexpr int kSpreadCells = 3;      // the spread grid over the overlap: 3 x 3
 constexpr int kOverlapSamples = 16;  // C is evaluated on a 17 x 17 grid over the frame
 
-// Jacobian of the map p -> H p (dehomogenised) at p.
-cv::Matx22f jacobianAt(const cv::Matx33d& H, cv::Point2d p) {
-  const double w = H(2, 0) * p.x + H(2, 1) * p.y + H(2, 2);
-  const double u = (H(0, 0) * p.x + H(0, 1) * p.y + H(0, 2)) / w;
-  const double v = (H(1, 0) * p.x + H(1, 1) * p.y + H(1, 2)) / w;
-  return cv::Matx22f(static_cast<float>((H(0, 0) - u * H(2, 0)) / w),
-                     static_cast<float>((H(0, 1) - u * H(2, 1)) / w),
-                     static_cast<float>((H(1, 0) - v * H(2, 0)) / w),
-                     static_cast<float>((H(1, 1) - v * H(2, 1)) / w));
-}
-
-cv::Matx33d scaling(int level) {
-  const double f = static_cast<double>(1 << level);
-  return cv::Matx33d(f, 0, 0, 0, f, 0, 0, 0, 1);
-}
-
 int levelFor(double magnification, cv::Size size, int available) {
   if (!(magnification > 1.0)) return 0;
   int level = std::max(0, static_cast<int>(std::floor(std::log2(magnification) + kLevelRounding)));
@@ -145,7 +129,7 @@ RegistrationCheck RegistrationVerifier::check(const ImagePyramid& frame,
   // (third homogeneous coordinate > 0), as the in-front test below assumes.
   const double wr = given(2, 0) * r.x + given(2, 1) * r.y + given(2, 2);
   const cv::Matx33d H = wr < 0 ? given * -1.0 : given;
-  const cv::Matx22f J = jacobianAt(H, r);
+  const cv::Matx22f J = transferJacobian(H, r);
   const double m = std::sqrt(
       std::abs(static_cast<double>(J(0, 0)) * J(1, 1) - static_cast<double>(J(0, 1)) * J(1, 0)));
   if (!std::isfinite(r.x) || !std::isfinite(r.y) || !(m > 0) || !std::isfinite(m)) {
@@ -157,7 +141,8 @@ RegistrationCheck RegistrationVerifier::check(const ImagePyramid& frame,
   const Level& ref = levels_[static_cast<size_t>(out.referenceLevel)];
   const cv::Mat& image = frame.level(out.frameLevel);
   // Reference-level pixels -> frame-level pixels.
-  const cv::Matx33d Hl = scaling(out.frameLevel).inv() * H * scaling(out.referenceLevel);
+  const cv::Matx33d Hl = ImagePyramid::levelToImage(out.frameLevel).inv() * H *
+                         ImagePyramid::levelToImage(out.referenceLevel);
   const cv::Matx33d inv = Hl.inv();
   const double s = resolutionScale(image.size());
   const int radius = std::max(2, static_cast<int>(std::lround(params_.searchRadiusAt320 * s)));
@@ -187,7 +172,8 @@ RegistrationCheck RegistrationVerifier::check(const ImagePyramid& frame,
     if (c < 0) continue;
     points.push_back(ref.points[static_cast<size_t>(c)]);
     predicted.push_back(mapped[static_cast<size_t>(c)]);
-    maps.push_back(jacobianAt(inv, cv::Point2d(predicted.back().x, predicted.back().y)));
+    maps.push_back(
+        cv::Matx22f(transferJacobian(inv, cv::Point2d(predicted.back().x, predicted.back().y))));
   }
   const NccPatches windows = NccPatches::warped(ref.image, points, maps, params_.halfWindow);
   std::vector<char> measurable(points.size(), 0), confirmed(points.size(), 0);

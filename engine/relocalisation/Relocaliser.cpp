@@ -118,6 +118,12 @@ struct Relocaliser::Impl {
   RelocalisationAttempt locate(const cv::Mat& frame) const;
   void checkFrame(const cv::Mat& frame) const;
   KeypointSupport ratioTestSupport(const cv::Mat& frame, const RigidPose& worldToCamera) const;
+  int agreeing(const RigidPose& worldToCamera, const std::vector<cv::Point3f>& points,
+               const std::vector<cv::Point2f>& pixels) const;
+  // Per frame keypoint: its closest ratio-test match over the references `matched` (indices into
+  // references), or reference -1.
+  std::vector<Match> bestMatches(const cv::Mat& descriptors, std::size_t keypoints,
+                                 const std::vector<int>& matched) const;
   // The pose from the frame's keypoints matched to the references `matched` (indices into
   // references), guided matching and the acceptance; the first inliers must be at least
   // `minInlierRatio` of the matches.
@@ -176,6 +182,11 @@ const PinholeCamera& Relocaliser::camera() const { return impl_->camera; }
 KeypointSupport Relocaliser::ratioTestSupport(const cv::Mat& frame,
                                               const RigidPose& worldToCamera) const {
   return impl_->ratioTestSupport(frame, worldToCamera);
+}
+
+int Relocaliser::agreeing(const RigidPose& worldToCamera, const std::vector<cv::Point3f>& points,
+                          const std::vector<cv::Point2f>& pixels) const {
+  return impl_->agreeing(worldToCamera, points, pixels);
 }
 
 RelocalisationAttempt Relocaliser::locate(const cv::Mat& frame) const {
@@ -314,34 +325,55 @@ void Relocaliser::Impl::checkFrame(const cv::Mat& frame) const {
     throw Error("relocalisation: frame must be 8-bit grey or BGR");
 }
 
+std::vector<Relocaliser::Impl::Match> Relocaliser::Impl::bestMatches(
+    const cv::Mat& descriptors, std::size_t keypoints, const std::vector<int>& matched) const {
+  std::vector<Match> best(keypoints);
+  for (int r : matched)
+    for (const cv::DMatch& m :
+         matchDescriptors(descriptors, references[static_cast<std::size_t>(r)].descriptors,
+                          features.normType(), params.ratio, false)) {
+      Match& b = best[static_cast<std::size_t>(m.queryIdx)];
+      if (b.reference < 0 || m.distance < b.distance) b = {r, m.trainIdx, m.distance};
+    }
+  return best;
+}
+
+int Relocaliser::Impl::agreeing(const RigidPose& worldToCamera,
+                                const std::vector<cv::Point3f>& points,
+                                const std::vector<cv::Point2f>& pixels) const {
+  const double threshold = params.reprojectionPx * resolutionScale(camera.imageSize());
+  int n = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Eigen::Vector3d Xc =
+        worldToCamera * Eigen::Vector3d(points[i].x, points[i].y, points[i].z);
+    if (Xc.z() <= 0) continue;
+    const Eigen::Vector2d p = camera.projectDistorted(Xc);
+    n += std::hypot(p.x() - pixels[i].x, p.y() - pixels[i].y) < threshold;
+  }
+  return n;
+}
+
 KeypointSupport Relocaliser::Impl::ratioTestSupport(const cv::Mat& frame,
                                                     const RigidPose& worldToCamera) const {
   checkFrame(frame);
-  const cv::Size size = camera.imageSize();
   std::vector<cv::KeyPoint> keypoints;
   cv::Mat descriptors;
-  features.detectAndDescribe(frame, params.featuresPerFrameFor(size), keypoints, descriptors);
-  std::vector<Match> best(keypoints.size());
-  for (std::size_t r = 0; r < references.size(); ++r)
-    for (const cv::DMatch& m : matchDescriptors(descriptors, references[r].descriptors,
-                                                features.normType(), params.ratio, false)) {
-      Match& b = best[static_cast<std::size_t>(m.queryIdx)];
-      if (b.reference < 0 || m.distance < b.distance)
-        b = {static_cast<int>(r), m.trainIdx, m.distance};
-    }
-  const double threshold = params.reprojectionPx * resolutionScale(size);
-  KeypointSupport support;
+  features.detectAndDescribe(frame, params.featuresPerFrameFor(camera.imageSize()), keypoints,
+                             descriptors);
+  std::vector<int> all(references.size());
+  std::iota(all.begin(), all.end(), 0);
+  const std::vector<Match> best = bestMatches(descriptors, keypoints.size(), all);
+  std::vector<cv::Point3f> points;
+  std::vector<cv::Point2f> pixels;
   for (std::size_t k = 0; k < best.size(); ++k) {
     if (best[k].reference < 0) continue;
-    ++support.matches;
-    const cv::Point3f& X = references[static_cast<std::size_t>(best[k].reference)]
-                               .points[static_cast<std::size_t>(best[k].point)];
-    const Eigen::Vector3d Xc = worldToCamera * Eigen::Vector3d(X.x, X.y, X.z);
-    if (Xc.z() <= 0) continue;
-    const Eigen::Vector2d p = camera.projectDistorted(Xc);
-    support.agreeing +=
-        std::hypot(p.x() - keypoints[k].pt.x, p.y() - keypoints[k].pt.y) < threshold;
+    points.push_back(references[static_cast<std::size_t>(best[k].reference)]
+                         .points[static_cast<std::size_t>(best[k].point)]);
+    pixels.push_back(keypoints[k].pt);
   }
+  KeypointSupport support;
+  support.matches = static_cast<int>(points.size());
+  support.agreeing = agreeing(worldToCamera, points, pixels);
   return support;
 }
 
@@ -402,14 +434,7 @@ RelocalisationAttempt Relocaliser::Impl::locateWith(const cv::Mat& frame,
   const cv::Size size = camera.imageSize();
   RelocalisationAttempt out;
   // 2D-3D matches: each frame keypoint keeps its closest ratio-test match over the references.
-  std::vector<Match> best(keypoints.size());
-  for (int r : matched)
-    for (const cv::DMatch& m :
-         matchDescriptors(descriptors, references[static_cast<std::size_t>(r)].descriptors,
-                          features.normType(), params.ratio, false)) {
-      Match& b = best[static_cast<std::size_t>(m.queryIdx)];
-      if (b.reference < 0 || m.distance < b.distance) b = {r, m.trainIdx, m.distance};
-    }
+  const std::vector<Match> best = bestMatches(descriptors, keypoints.size(), matched);
   std::vector<cv::Point3f> object;
   std::vector<cv::Point2f> image;
   std::vector<int> matchReference;

@@ -10,7 +10,6 @@
 #include <utility>
 #include <vector>
 
-#include "engine/config/ResolutionScale.hpp"
 #include "engine/core/Error.hpp"
 #include "engine/core/ThreadCpuClock.hpp"
 #include "engine/estimation/RollingShutterEstimator.hpp"
@@ -185,7 +184,6 @@ struct MultiReferenceTracker::Impl {
                                 RelocalisationReport& relocalisation);
   bool verified(PoseTrackingResult& r, const cv::Mat& frame,
                 const RelocalisationCandidate* candidate = nullptr) const;
-  int keptKeypointInliers(const RigidPose& worldToCamera, const RelocalisationCandidate& c) const;
 };
 
 MultiReferenceResult MultiReferenceTracker::Impl::process(const cv::Mat& frame) {
@@ -334,7 +332,9 @@ bool MultiReferenceTracker::Impl::verified(PoseTrackingResult& r, const cv::Mat&
                                            const RelocalisationCandidate* candidate) const {
   if (r.state != TrackingState::Tracking || !r.worldToCamera) return false;
   const RelocalisationParams& p = params.relocalisation;
-  const int kept = candidate ? keptKeypointInliers(*r.worldToCamera, *candidate) : -1;
+  const int kept = candidate ? relocaliser->agreeing(*r.worldToCamera, candidate->distinctivePoints,
+                                                     candidate->distinctivePixels)
+                             : -1;
   if (kept >= p.minInliers) return true;
   std::string why;
   if (r.distinctiveInliers < p.minDistinctiveInliers) {
@@ -373,24 +373,6 @@ bool MultiReferenceTracker::Impl::verified(PoseTrackingResult& r, const cv::Mat&
   r.T_Ak.reset();
   r.message = "not verified: " + why + ": on repeated texture the pose could be a whole period off";
   return false;
-}
-
-// How many of the candidate's ratio-test keypoint inliers `worldToCamera` projects (lens
-// distortion included) within the relocaliser's inlier threshold of their keypoints.
-int MultiReferenceTracker::Impl::keptKeypointInliers(const RigidPose& worldToCamera,
-                                                     const RelocalisationCandidate& c) const {
-  const double threshold =
-      params.relocalisation.reprojectionPx * resolutionScale(map.camera.imageSize());
-  int kept = 0;
-  for (std::size_t i = 0; i < c.distinctivePoints.size(); ++i) {
-    const cv::Point3f& X = c.distinctivePoints[i];
-    const Eigen::Vector3d Xc = worldToCamera * Eigen::Vector3d(X.x, X.y, X.z);
-    if (Xc.z() <= 0) continue;
-    const Eigen::Vector2d p = map.camera.projectDistorted(Xc);
-    kept +=
-        std::hypot(p.x() - c.distinctivePixels[i].x, p.y() - c.distinctivePixels[i].y) < threshold;
-  }
-  return kept;
 }
 
 // The Relocaliser's candidate, refined and verified by the pair best placed for it.

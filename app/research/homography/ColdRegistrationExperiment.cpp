@@ -10,6 +10,7 @@
 
 #include "app/cli/ProgressBar.hpp"
 #include "app/research/homography/HomographyGroundTruth.hpp"
+#include "app/simulator/BrickWallScene.hpp"
 #include "app/simulator/ProceduralTexture.hpp"
 #include "app/simulator/SensorNoise.hpp"
 #include "engine/core/Error.hpp"
@@ -42,19 +43,6 @@ render::TexturedMesh quad(double x0, double y0, double x1, double y1, double z, 
   m.indices = {0, 1, 2, 0, 2, 3};
   m.texture = std::move(texture);
   return m;
-}
-
-// Homography of the plane z = 0 (world x, y in metres) into the image of a camera.
-cv::Matx33d planeHomography(const Eigen::Matrix3d& K, const Eigen::Matrix4d& worldToCamera) {
-  Eigen::Matrix3d M;
-  M.col(0) = worldToCamera.block<3, 1>(0, 0);
-  M.col(1) = worldToCamera.block<3, 1>(0, 1);
-  M.col(2) = worldToCamera.block<3, 1>(0, 3);
-  const Eigen::Matrix3d H = K * M;
-  cv::Matx33d out;
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) out(r, c) = H(r, c);
-  return out;
 }
 
 double medianOf(std::vector<double> v) {
@@ -158,7 +146,7 @@ std::vector<ColdTrial> runColdRegistration(const ColdRegistrationOptions& option
   };
   const render::PinholeView referenceView =
       view(Eigen::Matrix3d::Identity(), Eigen::Vector3d(0, 0, -referenceDistance));
-  const cv::Matx33d referencePlane = planeHomography(K, referenceView.worldToCamera);
+  const cv::Matx33d referencePlane = planeToImage(K, referenceView.worldToCamera);
   const cv::Mat reference = addSensorNoise(renderer.render(referenceView, kSupersample),
                                            mixSeed(options.seed, 13), options.noiseSigma);
   HomographyTracker tracker(reference, options.params);
@@ -186,7 +174,7 @@ std::vector<ColdTrial> runColdRegistration(const ColdRegistrationOptions& option
     const Eigen::Vector3d centre =
         lookAt - (referenceDistance / trial.scale) * cameraToWorld.col(2);
     const render::PinholeView frameView = view(cameraToWorld, centre);
-    cv::Matx33d truth = planeHomography(K, frameView.worldToCamera) * referencePlane.inv();
+    cv::Matx33d truth = planeToImage(K, frameView.worldToCamera) * referencePlane.inv();
     truth *= 1.0 / truth(2, 2);
     const cv::Mat frame = addSensorNoise(
         renderer.render(frameView, kSupersample),
