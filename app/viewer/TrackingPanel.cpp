@@ -45,6 +45,8 @@ void drawTrackingPanel(ViewerState& state, const cv::Rect2f& placement) {
     // Rolling shutter: the readout as a fraction of the frame interval, given or estimated online.
     changed |= inputDouble("RS readout", p.pose.rollingShutterReadout, 0.05, "%.2f");
     changed |= ImGui::Checkbox("estimate readout", &p.pose.estimateRollingShutter);
+    // Learned reliability of the map's points and corners (0: the corner model's weights alone).
+    changed |= inputDouble("reliability prior", p.pose.reliabilityPriorObservations, 1.0, "%.1f");
     if (state.rollingShutterReadout)
       ImGui::Text("readout in use: %.3f", *state.rollingShutterReadout);
   }

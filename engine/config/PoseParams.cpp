@@ -26,6 +26,7 @@ void PoseParams::fields(Self& p, const Field& field) {
   field("rolling_shutter_readout", p.rollingShutterReadout, Range{0.0, 1.0});
   field("estimate_rolling_shutter", p.estimateRollingShutter);
   field("map_point_sd_scale", p.mapPointSdScale, Range{0.0, 100.0});
+  field("reliability_prior_observations", p.reliabilityPriorObservations, Range{0.0, 1e6});
 }
 
 template struct ParamSection<PoseParams>;

@@ -468,7 +468,10 @@ void MultiReferenceTracker::setCornerVarianceModel(const CornerVarianceModel& mo
 
 void MultiReferenceTracker::reset() {
   Impl& m = *impl_;
-  for (Impl::CachedTracker& c : m.cache) c.tracker->reset();
+  for (Impl::CachedTracker& c : m.cache) {
+    c.tracker->reset();
+    c.tracker->forgetLearnedReliability();
+  }
   m.active = {};
   m.selector.reset();
   m.state = TrackingState::Initialising;

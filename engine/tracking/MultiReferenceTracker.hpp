@@ -53,7 +53,9 @@ class MultiReferenceTracker {
   void setParams(const TrackerParams& params);  // takes effect on the next frame
   void setMotionModel(const ArMotionModel& model);
   void setCornerVarianceModel(const CornerVarianceModel& model);
-  void reset();  // back to initialising
+  // Back to initialising, as a fresh tracker: the pair trackers' learned reliability is forgotten
+  // too (so a reset tracker gives the same poses as a new one).
+  void reset();
   const MultiReferenceMap& map() const;
   TrackingState state() const;
   std::pair<int, int> referencesInUse() const;  // (-1, -1) before the first pose

@@ -20,6 +20,7 @@
 #include "engine/matching/DistinctiveCorners.hpp"
 #include "engine/matching/NarrowBaselineMatcher.hpp"
 #include "engine/matching/PatchAligner.hpp"
+#include "engine/tracking/MeasurementReliability.hpp"
 #include "engine/tracking/PoseSupport.hpp"
 #include "engine/tracking/WideBaselineMatcher.hpp"
 
@@ -182,10 +183,29 @@ struct PoseTracker::Impl {
     refB = prepare(map.imageB, map.cornersB, map.camera, map.matches, false);
     computeDistinctiveCorners();
     computePointCovariances();
+    pointReliability =
+        MeasurementReliability(map.matches.size(), params.pose.reliabilityPriorObservations);
+    cornerReliability = MeasurementReliability(refA.measured.size() + refB.measured.size(),
+                                               params.pose.reliabilityPriorObservations);
     estimator = std::make_unique<RegularizedPoseEstimator>(map.camera.K(), map.T_AB());
     applyCornerParams();
     applyPoseParams();
     shutter = std::make_shared<RollingShutterEstimator>(params.pose.rollingShutterReadout);
+  }
+
+  // Learned reliability (pose.reliability_prior_observations) of each map point's three-view
+  // terms and of each reference corner's epipolar terms (A's corners, then B's). A tracked
+  // frame's residuals count once the next frame goes on tracking from it (not seeded, no reset in
+  // between): a start its caller refuses teaches nothing.
+  MeasurementReliability pointReliability{0, 0.0}, cornerReliability{0, 0.0};
+  struct PendingObservation {
+    bool point;  // a map point's (else a reference corner's)
+    std::size_t source;
+    double whitenedSquared;
+  };
+  std::vector<PendingObservation> pendingReliability;
+  std::size_t cornerSource(bool inB, int referenceCorner) const {
+    return (inB ? refA.measured.size() : 0) + static_cast<std::size_t>(referenceCorner);
   }
 
   std::vector<char> distinctiveA, distinctiveB;  // per reference corner (DistinctiveCorners)
@@ -342,7 +362,9 @@ struct PoseTracker::Impl {
     Vector6d xLin = Vector6d::Zero();  // the robust linear pose (PnP-RANSAC, refined)
     PoseMeasurements measurements;     // the gated terms for the estimator
     std::vector<char> inlierA, inlierB;
-    std::vector<std::size_t> threeViewMeasurement;  // per three-view term: its measurement
+    std::vector<std::size_t> threeViewMeasurement;      // per three-view term: its measurement
+    std::vector<int> threeViewMapMatch;                 // per three-view term: its map match
+    std::vector<int> epipolarCornerA, epipolarCornerB;  // per epipolar term: its reference corner
     int distinctive = 0;  // gated matches to distinctive reference corners
   };
   FrameCorners detectCorners(const cv::Mat& gray);
@@ -360,6 +382,7 @@ struct PoseTracker::Impl {
                     PoseTrackingResult& r);
   void keepInliers(const FrameCorners& c, const FrameMatches& m, const Inliers& in,
                    PoseTrackingResult& r);
+  void recordResiduals(const RigidPose& TAk, const Inliers& in);
   PoseTrackingResult process(const cv::Mat& frame);
 };
 
@@ -652,28 +675,33 @@ std::optional<PoseTracker::Impl::Inliers> PoseTracker::Impl::rejectOutliers(
   const auto sigmaOf = [&](float contrastK, float contrastRef) {
     return std::sqrt(varianceModel.variance(contrastK) + varianceModel.variance(contrastRef));
   };
-  const auto gateEpipolar = [&](const std::vector<WideBaselineMatch>& ms,
-                                const std::vector<std::size_t>& measurement,
-                                const PreparedReference& ref, const Eigen::Matrix3d& F,
-                                bool useEpipolar, const std::vector<char>& distinctive,
-                                std::vector<char>& inlier, std::vector<EpipolarMatch>& out) {
-    inlier.assign(ms.size(), 0);
-    for (std::size_t i = 0; i < ms.size(); ++i) {
-      const Eigen::Vector2d& pK = meas.undistorted[measurement[i]];
-      const auto rc = static_cast<std::size_t>(ms[i].referenceCorner);
-      if (maxEpipolarDistance(F, ref.measured[rc], pK) > gate) continue;
-      inlier[i] = 1;
-      in.distinctive += distinctive[rc] ? 1 : 0;
-      if (!useEpipolar) continue;
-      out.push_back({ref.measured[rc], pK,
-                     sigmaOf(c.corners[static_cast<std::size_t>(ms[i].frameCorner)].contrast,
-                             ref.contrast[rc])});
-    }
-  };
+  const auto gateEpipolar =
+      [&](const std::vector<WideBaselineMatch>& ms, const std::vector<std::size_t>& measurement,
+          const PreparedReference& ref, const Eigen::Matrix3d& F, bool useEpipolar,
+          const std::vector<char>& distinctive, std::vector<char>& inlier,
+          std::vector<EpipolarMatch>& out, std::vector<int>& outCorner) {
+        const bool inB = &ref == &refB;
+        inlier.assign(ms.size(), 0);
+        for (std::size_t i = 0; i < ms.size(); ++i) {
+          const Eigen::Vector2d& pK = meas.undistorted[measurement[i]];
+          const auto rc = static_cast<std::size_t>(ms[i].referenceCorner);
+          if (maxEpipolarDistance(F, ref.measured[rc], pK) > gate) continue;
+          inlier[i] = 1;
+          in.distinctive += distinctive[rc] ? 1 : 0;
+          if (!useEpipolar) continue;
+          const double reliability =
+              cornerReliability.varianceFactor(cornerSource(inB, ms[i].referenceCorner));
+          out.push_back({ref.measured[rc], pK,
+                         sigmaOf(c.corners[static_cast<std::size_t>(ms[i].frameCorner)].contrast,
+                                 ref.contrast[rc]) *
+                             std::sqrt(reliability)});
+          outCorner.push_back(ms[i].referenceCorner);
+        }
+      };
   gateEpipolar(m.toA, meas.toA, refA, FA, useEpipolarA, distinctiveA, in.inlierA,
-               in.measurements.toA);
+               in.measurements.toA, in.epipolarCornerA);
   gateEpipolar(m.toB, meas.toB, refB, FB, useEpipolarB, distinctiveB, in.inlierB,
-               in.measurements.toB);
+               in.measurements.toB, in.epipolarCornerB);
   for (const Pair3D& p : pairs) {
     const Eigen::Vector3d& P = map.matches[static_cast<std::size_t>(p.mapMatch)].pointA;
     const Eigen::Vector2d& pK = meas.undistorted[p.measurement];
@@ -682,8 +710,14 @@ std::optional<PoseTracker::Impl::Inliers> PoseTracker::Impl::rejectOutliers(
     const double sigma =
         varianceModel.sigma(c.corners[static_cast<std::size_t>(p.frameCorner)].contrast);
     ThreeViewMatch t{P, pK, sigma};
-    if (params.pose.mapPointSdScale > 0)
-      t.whitening = threeViewWhitening(TAkLin, p.mapMatch, sigma);
+    const Eigen::Matrix2d whitening = params.pose.mapPointSdScale > 0
+                                          ? threeViewWhitening(TAkLin, p.mapMatch, sigma)
+                                          : Eigen::Matrix2d(Eigen::Matrix2d::Identity() / sigma);
+    const double reliability =
+        pointReliability.varianceFactor(static_cast<std::size_t>(p.mapMatch));
+    if (params.pose.mapPointSdScale > 0 || reliability != 1.0)
+      t.whitening = whitening / std::sqrt(reliability);
+    in.threeViewMapMatch.push_back(p.mapMatch);
     in.measurements.threeView.push_back(t);
   }
   r.inliers = static_cast<int>(in.measurements.threeView.size());
@@ -745,6 +779,37 @@ void PoseTracker::Impl::keepInliers(const FrameCorners& c, const FrameMatches& m
   keep(m.toB, in.inlierB, refB, prevB, r.inliersB);
 }
 
+// Stage 10b, learned reliability: each term's residual at the accepted pose, whitened by its
+// modelled variance (the reliability factor it was weighted with taken out), held until the next
+// frame goes on from this one (process() commits or drops them).
+void PoseTracker::Impl::recordResiduals(const RigidPose& TAk, const Inliers& in) {
+  pendingReliability.clear();
+  const PoseMeasurements& pm = in.measurements;
+  for (std::size_t i = 0; i < pm.threeView.size(); ++i) {
+    const ThreeViewMatch& t = pm.threeView[i];
+    const auto source = static_cast<std::size_t>(in.threeViewMapMatch[i]);
+    const Eigen::Vector2d whitened = t.whiteningOrScalar() *
+                                     std::sqrt(pointReliability.varianceFactor(source)) *
+                                     (map.camera.project(TAk * t.pointA) - t.pK);
+    pendingReliability.push_back({true, source, 0.5 * whitened.squaredNorm()});
+  }
+  const auto epipolar = [&](const std::vector<EpipolarMatch>& terms,
+                            const std::vector<int>& corners, bool inB, const RigidPose& refToK) {
+    const Eigen::Matrix3d F = fundamentalMatrix(map.camera.K(), refToK);
+    for (std::size_t i = 0; i < terms.size(); ++i) {
+      const EpipolarMatch& e = terms[i];
+      const std::size_t source = cornerSource(inB, corners[i]);
+      const double sigma = e.sigma / std::sqrt(cornerReliability.varianceFactor(source));
+      const Eigen::Vector3d line = F * Eigen::Vector3d(e.pRef.x(), e.pRef.y(), 1.0);
+      const double distance =
+          Eigen::Vector3d(e.pK.x(), e.pK.y(), 1.0).dot(line) / std::hypot(line.x(), line.y());
+      pendingReliability.push_back({false, source, distance * distance / (sigma * sigma)});
+    }
+  };
+  epipolar(pm.toA, in.epipolarCornerA, false, TAk);
+  epipolar(pm.toB, in.epipolarCornerB, true, TAk * map.T_AB().inverse());
+}
+
 PoseTrackingResult PoseTracker::Impl::process(const cv::Mat& frame) {
   const Clock::time_point start = Clock::now();
   PoseTrackingResult r;
@@ -758,6 +823,10 @@ PoseTrackingResult PoseTracker::Impl::process(const cv::Mat& frame) {
   const cv::Mat gray = toGray8(frame);
   const double scale = resolutionScale(gray.size());
   const double gate = limits.gatePx * scale;
+  if (!seedPose && state == TrackingState::Tracking)
+    for (const PendingObservation& o : pendingReliability)
+      (o.point ? pointReliability : cornerReliability).observe(o.source, o.whitenedSquared);
+  pendingReliability.clear();
 
   // 1. Corners.
   Clock::time_point t = Clock::now();
@@ -849,8 +918,9 @@ PoseTrackingResult PoseTracker::Impl::process(const cv::Mat& frame) {
     shutter->addFrame(map.camera.K()(0, 0), map.camera.K()(1, 1), observations);
   }
 
-  // 10. Seeds for the next frame.
+  // 10. Seeds for the next frame, and the residuals that teach the learned reliability.
   keepInliers(corners, matches, *inliers, r);
+  recordResiduals(TAk, *inliers);
   return finish(r);
 }
 
@@ -868,6 +938,8 @@ void PoseTracker::setParams(const TrackerParams& params) {
   impl_->applyPoseParams();
   impl_->computeDistinctiveCorners();
   impl_->computePointCovariances();
+  impl_->pointReliability.setPriorObservations(params.pose.reliabilityPriorObservations);
+  impl_->cornerReliability.setPriorObservations(params.pose.reliabilityPriorObservations);
 }
 void PoseTracker::setMotionModel(const ArMotionModel& model) {
   model.check();
@@ -884,12 +956,18 @@ void PoseTracker::seed(const RigidPose& worldToCamera) {
   impl_->seedPose = worldToCamera;
   impl_->regularizer->reset();
 }
+void PoseTracker::forgetLearnedReliability() {
+  impl_->pointReliability.clear();
+  impl_->cornerReliability.clear();
+  impl_->pendingReliability.clear();
+}
 void PoseTracker::reset() {
   impl_->seedPose.reset();
   impl_->state = TrackingState::Initialising;
   impl_->regularizer->reset();
   impl_->prevA.clear();
   impl_->prevB.clear();
+  impl_->pendingReliability.clear();
 }
 void PoseTracker::shareRollingShutterEstimator(std::shared_ptr<RollingShutterEstimator> shared) {
   if (!shared) throw Error("PoseTracker::shareRollingShutterEstimator: null estimator");

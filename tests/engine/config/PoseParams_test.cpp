@@ -26,6 +26,8 @@ TEST(PoseParams, DefaultsAndRoundTrip) {
   EXPECT_DOUBLE_EQ(in.mapPointSdScale, 0.5);
   in.estimateRollingShutter = true;
   in.mapPointSdScale = 0.0;
+  EXPECT_DOUBLE_EQ(in.reliabilityPriorObservations, 2.0);  // learned reliability on (README)
+  in.reliabilityPriorObservations = 0.0;
   PoseParams out;
   roundTrip(in, out);
   EXPECT_EQ(out.estimator, PoseEstimatorKind::Standard);
@@ -37,6 +39,7 @@ TEST(PoseParams, DefaultsAndRoundTrip) {
   EXPECT_DOUBLE_EQ(out.rollingShutterReadout, 0.6);
   EXPECT_TRUE(out.estimateRollingShutter);
   EXPECT_DOUBLE_EQ(out.mapPointSdScale, 0.0);
+  EXPECT_DOUBLE_EQ(out.reliabilityPriorObservations, 0.0);
 }
 
 TEST(PoseParams, EveryBadFieldIsNamed) {
@@ -50,6 +53,10 @@ TEST(PoseParams, EveryBadFieldIsNamed) {
       {"pose.rotation_sigma", [&](PoseParams& p) { p.rotationSigma = nan; }},
       {"pose.rolling_shutter_readout", [](PoseParams& p) { p.rollingShutterReadout = -0.1; }},
       {"pose.rolling_shutter_readout", [](PoseParams& p) { p.rollingShutterReadout = 1.5; }},
+      {"pose.reliability_prior_observations",
+       [](PoseParams& p) { p.reliabilityPriorObservations = -1.0; }},
+      {"pose.reliability_prior_observations",
+       [&](PoseParams& p) { p.reliabilityPriorObservations = nan; }},
   };
   for (const auto& [field, mutate] : cases) {
     PoseParams p;

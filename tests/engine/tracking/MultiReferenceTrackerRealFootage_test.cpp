@@ -112,8 +112,9 @@ TEST_F(MultiReferenceTrackerRealFootage, TheFirstFrameGetsAPose) {
 }
 
 // The whole clip in order with the default parameters, against issue 24's bounds: >= 99.5% of the
-// frames tracked from frame 0, cube error p95 <= 0.9 px and max below 1.5 px. The mean is held to
-// 0.38 px (measured 0.367; the issue's target of 0.35 is not met, README "Real footage").
+// frames tracked from frame 0, cube error p95 <= 0.9 px and max below 1.5 px, mean <= 0.35 px.
+// Measured (learned reliability on): mean 0.344, p95 0.769, max 1.20 px (0.367 / 0.807 / 1.33
+// without it). The mean is held to 0.36: 0.01 of room for other CPUs' SIMD float paths.
 TEST_F(MultiReferenceTrackerRealFootage, TracksTheWholeClipWithinTheBounds) {
   MultiReferenceTracker tracker(clip_->map, TrackerParams{});
   std::vector<double> errors;
@@ -126,8 +127,9 @@ TEST_F(MultiReferenceTrackerRealFootage, TracksTheWholeClipWithinTheBounds) {
   double mean = 0.0;
   for (double e : errors) mean += e;
   mean /= static_cast<double>(errors.size());
-  EXPECT_LE(mean, 0.38);
+  EXPECT_LE(mean, 0.36);
   EXPECT_LE(percentile(errors, 0.95), 0.9);
+  RecordProperty("cube_error_mean_px", std::to_string(mean));
   EXPECT_LT(*std::max_element(errors.begin(), errors.end()), 1.5);
 }
 

@@ -151,6 +151,32 @@ TEST(MultiReferenceTracker, StartsNearAnyReferenceWithoutRelocalisation) {
   EXPECT_LT(rotationErrorDeg(*r.tracking.worldToCamera, truth), 0.1);
 }
 
+// reset() starts again as a new tracker would: the pair tracker's learned reliability
+// (pose.reliability_prior_observations) is forgotten too, so the same frames give the same poses
+// bit for bit (one pair: with several, the turn of the pairs tried at a start moves on).
+TEST(MultiReferenceTracker, AResetTrackerGivesTheSamePosesAsANewOne) {
+  const PlaneMultiWorld world({-0.1, 0.1});
+  std::vector<cv::Mat> frames;
+  for (int k = 0; k < 12; ++k)
+    frames.push_back(world.render(PlaneMultiWorld::cameraAlong(-0.1 + 0.01 * k, k), 600 + k));
+  const auto run = [&](MultiReferenceTracker& tracker) {
+    std::vector<RigidPose> poses;
+    for (const cv::Mat& f : frames) {
+      const MultiReferenceResult r = tracker.process(f);
+      EXPECT_EQ(r.tracking.state, TrackingState::Tracking) << r.tracking.message;
+      poses.push_back(r.tracking.worldToCamera.value_or(RigidPose()));
+    }
+    return poses;
+  };
+  MultiReferenceTracker tracker(world.map(), TrackerParams{});
+  const std::vector<RigidPose> first = run(tracker);
+  tracker.reset();
+  const std::vector<RigidPose> again = run(tracker);
+  ASSERT_EQ(first.size(), again.size());
+  for (std::size_t k = 0; k < first.size(); ++k)
+    EXPECT_EQ(first[k].matrix4(), again[k].matrix4()) << "frame " << k;
+}
+
 // Pair trackers are created lazily and at most references.cached_trackers are kept: tracking
 // across all pairs with a cache of one still tracks every frame.
 TEST(MultiReferenceTracker, ASmallTrackerCacheStillTracks) {
