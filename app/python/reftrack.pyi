@@ -1,4 +1,4 @@
-# Type stubs of the Python module `reftrack` (python/ReftrackModule.cpp; keep the two in step).
+# Type stubs of the Python module `reftrack` (app/python/ReftrackModule.cpp; keep the two in step).
 import os
 from typing import Any, Literal, Mapping, Optional, Tuple, Union
 

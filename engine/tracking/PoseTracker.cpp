@@ -710,13 +710,11 @@ std::optional<PoseTracker::Impl::Inliers> PoseTracker::Impl::rejectOutliers(
     const double sigma =
         varianceModel.sigma(c.corners[static_cast<std::size_t>(p.frameCorner)].contrast);
     ThreeViewMatch t{P, pK, sigma};
-    const Eigen::Matrix2d whitening = params.pose.mapPointSdScale > 0
-                                          ? threeViewWhitening(TAkLin, p.mapMatch, sigma)
-                                          : Eigen::Matrix2d(Eigen::Matrix2d::Identity() / sigma);
+    if (params.pose.mapPointSdScale > 0)
+      t.whitening = threeViewWhitening(TAkLin, p.mapMatch, sigma);
     const double reliability =
         pointReliability.varianceFactor(static_cast<std::size_t>(p.mapMatch));
-    if (params.pose.mapPointSdScale > 0 || reliability != 1.0)
-      t.whitening = whitening / std::sqrt(reliability);
+    if (reliability != 1.0) t.whitening = t.whiteningOrScalar() / std::sqrt(reliability);
     in.threeViewMapMatch.push_back(p.mapMatch);
     in.measurements.threeView.push_back(t);
   }
