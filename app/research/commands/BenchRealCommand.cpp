@@ -2,8 +2,10 @@
 // measured in the same run. Two modes:
 //  - `--input` (GroundTruthBenchmark): any recording with a true pose per frame (an image folder
 //    or video with a TUM file, tum:DIR, euroc:DIR), references taken from its frames: reftrack,
-//    SIFT / AKAZE / ORB + PnP per frame and ORB + PnP + Kalman, in sequence order and shuffled
-//    (cold starts): coverage, cube error, wrong poses, thread CPU per frame; table, CSV and plot.
+//    SIFT / AKAZE / ORB + PnP per frame and ORB + PnP + Kalman, in each --order (default: sequence
+//    order and shuffled with cold starts; also shuffled-sequence, cuts:N, stride:K played as one
+//    sequence): coverage, cube error, wrong poses, re-acquisition after cuts, thread CPU per frame;
+//    table, CSV and plot.
 //  - otherwise (RealFootageBenchmark): a clip of a card on a table, the truth from the card
 //    (default ViSP's postcard clip): tracked %, grid and cube error against the card, median and
 //    p90 thread CPU per tracked frame beside ORB + PnP + Kalman, and their ratio.
@@ -84,8 +86,8 @@ CommandRegistration registerBenchRealCommand(CLI::App& parent) {
   CLI::App* sub = parent.add_subcommand(
       "bench-real",
       "6-DOF tracking of real footage with ground truth vs per-frame OpenCV peers and ORB + PnP + "
-      "Kalman: cube error, coverage, wrong poses (also shuffled: cold starts), thread CPU per "
-      "frame");
+      "Kalman: cube error, coverage, wrong poses (also shuffled, cut or strided orders), thread "
+      "CPU per frame");
   // Either mode.
   sub->add_option("--frames", a->options.frames, "Frames benchmarked from the start (0: all)")
       ->check(CLI::Range(0, 1000000))
@@ -128,7 +130,18 @@ CommandRegistration registerBenchRealCommand(CLI::App& parent) {
                               ->capture_default_str();
   CLI::Option* shuffleSeed =
       sub->add_option("--shuffle-seed", a->groundTruth.shuffleSeed,
-                      "With --input: seed of the shuffled order (every frame a cold start)")
+                      "With --input: seed of the shuffled orders (shuffled, shuffled-sequence, "
+                      "cuts:N)")
+          ->capture_default_str();
+  CLI::Option* order =
+      sub->add_option(
+             "--order", a->groundTruth.orders,
+             "With --input: frame orders to run every method in, comma-separated, of "
+             "sequence, shuffled (every frame a cold start), shuffled-sequence (that order "
+             "as one sequence, no reset), cuts:N (N contiguous segments in a shuffled "
+             "order, one sequence; frames to re-acquire after each cut), stride:K (frames "
+             "0, K, 2K, ... in order; only those scored)")
+          ->delimiter(',')
           ->capture_default_str();
   CLI::Option* methods =
       sub->add_option("--methods", a->groundTruth.methods,
@@ -139,7 +152,8 @@ CommandRegistration registerBenchRealCommand(CLI::App& parent) {
       "--out", a->out,
       "With --input: folder for table.txt, cube_errors.csv and cube_errors.png (written once "
       "every run is done)");
-  for (CLI::Option* o : {camera, gt, refFrames, cubeCentre, cubeEdge, shuffleSeed, methods, out})
+  for (CLI::Option* o :
+       {camera, gt, refFrames, cubeCentre, cubeEdge, shuffleSeed, order, methods, out})
     o->needs(input);
   // A card clip (the default mode).
   CLI::Option* clip = sub->add_option("--clip", a->clip,
@@ -209,12 +223,24 @@ CommandRegistration registerBenchRealCommand(CLI::App& parent) {
       "With --input: a map is prepared from the --ref-frames with their true poses (as `prepare\n"
       "--input --ref-frames --poses`); reftrack (MultiReferenceTracker), SIFT / AKAZE / ORB\n"
       "keypoints matched to the same references (triangulated with their poses) + solvePnPRansac\n"
-      "+ solvePnPRefineLM per frame, and ORB + PnP + Kalman each run in sequence order and "
-      "shuffled\n"
-      "(every frame a cold start). cube: mean px distance of the cube's 8 vertices projected with\n"
-      "K alone, estimated vs true pose; wrong: more than 5 px off; good: within 1.5 px. CPU: "
-      "thread\n"
-      "time per frame, one thread (cv::setNumThreads(1)).\n"
+      "+ solvePnPRefineLM per frame, and ORB + PnP + Kalman each run in every --order:\n"
+      "  sequence           every frame in order\n"
+      "  shuffled           every frame in a shuffled order (--shuffle-seed), each a cold start\n"
+      "                     (the tracker reset, the Kalman filter restarted)\n"
+      "  shuffled-sequence  the same shuffled order played as one sequence, no reset\n"
+      "  cuts:N             the frames cut into N contiguous segments of about equal length,\n"
+      "                     played in a shuffled order (no segment right after the one before it\n"
+      "                     in time) as one sequence, no reset: N-1 cuts. A line per method gives\n"
+      "                     each cut's frames to re-acquire (k: frames after the cut before the\n"
+      "                     first pose within 1.5 px; 0: the first is good) and its wrong poses\n"
+      "  stride:K           frames 0, K, 2K, ... in order as one sequence (fast motion); only\n"
+      "                     those frames are scored\n"
+      "Only `shuffled` resets a method between frames; the per-frame peers keep nothing anyway.\n"
+      "cube: mean px distance of the cube's 8 vertices projected with K alone, estimated vs true\n"
+      "pose; wrong: more than 5 px off; good: within 1.5 px. CPU: thread time per frame, one\n"
+      "thread (cv::setNumThreads(1)). E.g. `--methods reftrack --order\n"
+      "sequence,shuffled-sequence,cuts:8,stride:4` for reftrack alone (the peers take ~100 ms a\n"
+      "frame).\n"
       "Card clip (no --input), ground truth (PlanarTargetTruth): the card's corners are\n"
       "followed from frame 0 by the homography tracker and refined by cornerSubPix; IPPE on them\n"
       "gives each frame's pose, the card's plane being the world. The map is prepared from the\n"

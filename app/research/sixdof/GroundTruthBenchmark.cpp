@@ -7,7 +7,6 @@
 #include <cstdio>
 #include <memory>
 #include <numeric>
-#include <random>
 #include <set>
 
 #include "app/research/baselines/OrbPnpKalmanTracker.hpp"
@@ -41,6 +40,7 @@ void GroundTruthBenchmarkOptions::check() const {
     throw Error("bench-real: --cube-edge must be > 0 m");
   if (frames < 0) throw Error("bench-real: --frames must be >= 0 (0: every frame)");
   if (passes < 1) throw Error("bench-real: --passes must be >= 1");
+  parseFrameOrders(orders);
   if (methods.empty()) throw Error("bench-real: --methods names no method");
   const std::vector<std::string>& known = groundTruthBenchmarkMethods();
   std::set<std::string> named;
@@ -55,8 +55,9 @@ void GroundTruthBenchmarkOptions::check() const {
 MethodSummary summarise(const MethodRun& run, const std::vector<bool>& truth) {
   MethodSummary s;
   std::vector<double> errors;
+  const std::vector<bool> played = playedFrames(run.plan, static_cast<int>(truth.size()));
   for (std::size_t k = 0; k < truth.size() && k < run.errorPx.size(); ++k) {
-    if (!truth[k]) continue;
+    if (!truth[k] || !played[k]) continue;
     ++s.frames;
     const double e = run.errorPx[k];
     if (std::isnan(e)) continue;
@@ -76,6 +77,29 @@ MethodSummary summarise(const MethodRun& run, const std::vector<bool>& truth) {
   }
   s.cpuMedianMs = percentileOf(run.cpuMs, 0.5);
   return s;
+}
+
+std::vector<CutRecovery> cutRecoveries(const MethodRun& run) {
+  std::vector<CutRecovery> recoveries;
+  const std::vector<int>& frames = run.plan.frames;
+  for (std::size_t c = 0; c < run.plan.cuts.size(); ++c) {
+    CutRecovery r;
+    r.position = run.plan.cuts[c];
+    if (r.position == 0 || r.position >= frames.size()) continue;  // not a cut between frames
+    const std::size_t end = c + 1 < run.plan.cuts.size() ? run.plan.cuts[c + 1] : frames.size();
+    r.fromFrame = frames[r.position - 1];
+    r.toFrame = frames[r.position];
+    r.segmentFrames = static_cast<int>(end - r.position);
+    for (std::size_t i = r.position; i < end; ++i) {
+      const std::size_t k = static_cast<std::size_t>(frames[i]);
+      const double e = k < run.errorPx.size() ? run.errorPx[k] : NAN;
+      if (e > kWrongPosePx) ++r.wrong;
+      if (r.framesToReacquire < 0 && e <= kGoodPosePx)
+        r.framesToReacquire = static_cast<int>(i - r.position);
+    }
+    recoveries.push_back(r);
+  }
+  return recoveries;
 }
 
 std::vector<Eigen::Vector3d> cubeOn(const Eigen::Vector3d& baseCentre, double edge) {
@@ -98,18 +122,6 @@ double cubeErrorPx(const PinholeCamera& camera, const std::vector<Eigen::Vector3
 }
 
 namespace {
-
-// One method behind a common face: a pose for a frame (or the reason there is none), a cold
-// start, and a fresh state for a new run.
-class PoseMethod {
- public:
-  virtual ~PoseMethod() = default;
-  virtual std::string name() const = 0;
-  virtual void startRun() = 0;   // before a run over the frames (outside the timing)
-  virtual void coldStart() = 0;  // before each frame of the shuffled order (outside the timing)
-  // The world->camera pose of `frame`, or nullopt with `reason` set.
-  virtual std::optional<RigidPose> locate(const cv::Mat& frame, std::string& reason) = 0;
-};
 
 class ReftrackMethod final : public PoseMethod {
  public:
@@ -201,6 +213,27 @@ double frameRate(const std::vector<double>& timestamps) {
 
 }  // namespace
 
+void playFrames(PoseMethod& method, const GroundTruthSequence& s,
+                const std::vector<Eigen::Vector3d>& cube, bool score, MethodRun& run) {
+  method.startRun();
+  for (int k : run.plan.frames) {
+    if (run.plan.coldStarts) method.coldStart();
+    const std::size_t frame = static_cast<std::size_t>(k);
+    std::string reason;
+    const double cpu0 = threadCpuMs();
+    const std::optional<RigidPose> pose = method.locate(s.frames[frame], reason);
+    run.cpuMs.push_back(threadCpuMs() - cpu0);
+    if (!score) continue;
+    run.poses[frame] = pose;
+    const std::optional<RigidPose>& truth = s.truth[frame];
+    if (!truth) continue;
+    if (pose)
+      run.errorPx[frame] = cubeErrorPx(s.camera, cube, *truth, *pose);
+    else
+      ++run.noPose[reason];
+  }
+}
+
 GroundTruthBenchmarkResult runGroundTruthBenchmark(const GroundTruthSequence& s,
                                                    const GroundTruthBenchmarkOptions& o,
                                                    const TrackerParams& params,
@@ -232,6 +265,11 @@ GroundTruthBenchmarkResult runGroundTruthBenchmark(const GroundTruthSequence& s,
   result.cubeEdge = o.cubeEdge;
   result.shuffleSeed = o.shuffleSeed;
   result.passes = o.passes;
+  // The orders' plans, checked against the frames before the (slow) preparation.
+  result.orders = parseFrameOrders(o.orders);
+  std::vector<FramePlan> plans;
+  for (const FrameOrder& order : result.orders)
+    plans.push_back(planFrames(order, result.frames, o.shuffleSeed));
 
   // The map, as `prepare --input --ref-frames --poses` makes it.
   std::vector<ReferenceImage> images;
@@ -268,53 +306,32 @@ GroundTruthBenchmarkResult runGroundTruthBenchmark(const GroundTruthSequence& s,
     }
   }
 
-  std::vector<int> sequence(static_cast<std::size_t>(result.frames));
-  std::iota(sequence.begin(), sequence.end(), 0);
-  std::vector<int> shuffled = sequence;
-  std::mt19937_64 rng(o.shuffleSeed);
-  std::shuffle(shuffled.begin(), shuffled.end(), rng);
   const std::vector<Eigen::Vector3d> cube = cubeOn(o.cubeCentre, o.cubeEdge);
-
   for (const auto& method : methods)
-    for (bool cold : {false, true}) {
+    for (std::size_t i = 0; i < result.orders.size(); ++i) {
       MethodRun run;
       run.method = method->name();
-      run.shuffled = cold;
+      run.order = result.orders[i];
+      run.plan = plans[i];
       run.errorPx.assign(static_cast<std::size_t>(result.frames), NAN);
       run.poses.resize(static_cast<std::size_t>(result.frames));
       result.runs.push_back(std::move(run));
     }
-  // Each pass runs every method in turn, in both orders, so all see the same machine load.
+  // Each pass runs every method in turn, in every order, so all see the same machine load.
   for (int pass = 0; pass < o.passes; ++pass)
     for (std::size_t m = 0; m < methods.size(); ++m)
-      for (bool cold : {false, true}) {
+      for (std::size_t i = 0; i < result.orders.size(); ++i) {
         PoseMethod& method = *methods[m];
-        MethodRun& run = result.runs[2 * m + (cold ? 1 : 0)];
+        MethodRun& run = result.runs[m * result.orders.size() + i];
         const auto runStart = std::chrono::steady_clock::now();
-        method.startRun();
-        for (int k : cold ? shuffled : sequence) {
-          if (cold) method.coldStart();
-          const cv::Mat& frame = s.frames[static_cast<std::size_t>(k)];
-          std::string reason;
-          const double cpu0 = threadCpuMs();
-          const std::optional<RigidPose> pose = method.locate(frame, reason);
-          run.cpuMs.push_back(threadCpuMs() - cpu0);
-          if (pass > 0) continue;
-          run.poses[static_cast<std::size_t>(k)] = pose;
-          const auto& truth = s.truth[static_cast<std::size_t>(k)];
-          if (!truth) continue;
-          if (pose)
-            run.errorPx[static_cast<std::size_t>(k)] = cubeErrorPx(s.camera, cube, *truth, *pose);
-          else
-            ++run.noPose[reason];
-        }
+        playFrames(method, s, cube, pass == 0, run);
         if (progress) {
           const double seconds =
               std::chrono::duration<double>(std::chrono::steady_clock::now() - runStart).count();
           char line[256];
-          std::snprintf(line, sizeof line, "pass %d/%d: %s, %s order: %d frames in %.1f s",
-                        pass + 1, o.passes, method.name().c_str(), cold ? "shuffled" : "sequence",
-                        result.frames, seconds);
+          std::snprintf(line, sizeof line, "pass %d/%d: %s, %s order: %zu frames in %.1f s",
+                        pass + 1, o.passes, method.name().c_str(), run.order.name.c_str(),
+                        run.plan.frames.size(), seconds);
           progress(line);
         }
       }

@@ -2,9 +2,10 @@
 // GroundTruthBenchmark (`bench-real --input`): the 6-DOF tracker and its peers on any recording
 // with a true camera pose per frame (GroundTruthSequence). A map is prepared from the reference
 // frames with their true poses (MultiReferencePreparer, as `prepare --input --ref-frames --poses`
-// does); then every method gives a pose per frame twice, in sequence order and in a shuffled
-// order where every frame is a cold start (the tracker reset() before each frame, the Kalman
-// filter restarted; the per-frame peers keep nothing anyway). Methods: reftrack
+// does); then every method gives a pose per frame in each of the chosen frame orders (FrameOrder:
+// by default in sequence order and in a shuffled order where every frame is a cold start, the
+// tracker reset() before each frame, the Kalman filter restarted; the per-frame peers keep nothing
+// anyway; the other orders play their frames as one sequence with no reset). Methods: reftrack
 // (MultiReferenceTracker), SIFT / AKAZE / ORB + solvePnPRansac + solvePnPRefineLM from the same
 // reference frames (PerFramePnpPeer), and ORB + PnP + Kalman (OrbPnpKalmanTracker on the first
 // two references). Score: a cube standing on the world's z = 0 plane (its base centred at
@@ -20,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "app/research/sixdof/FrameOrder.hpp"
 #include "app/research/sixdof/GroundTruthSequence.hpp"
 #include "engine/config/TrackerParams.hpp"
 #include "engine/reference/ReferencePreparer.hpp"
@@ -40,27 +42,30 @@ struct GroundTruthBenchmarkOptions {
   double cubeEdge = 0.1;                                 // metres
   int frames = 0;  // frames benchmarked from the start; 0: every frame of the sequence
   int passes = 1;  // passes over the frames for the timing (errors from the first)
-  std::uint64_t shuffleSeed = 1;
+  std::uint64_t shuffleSeed = 1;  // of the shuffled orders (shuffled, shuffled-sequence, cuts:N)
   std::vector<std::string> methods = groundTruthBenchmarkMethods();
+  std::vector<std::string> orders = defaultFrameOrders();  // `--order` names, in table order
 
-  // Throws reftrack::Error naming the bad option (before anything is read).
+  // Throws reftrack::Error naming the bad option (before anything is read). An order's N or K
+  // beyond the frames is checked by runGroundTruthBenchmark (planFrames), before the map.
   void check() const;
 };
 
 // One method over the frames in one order.
 struct MethodRun {
-  std::string method;     // its name in the table, e.g. "SIFT+PnP"
-  bool shuffled = false;  // shuffled order, every frame a cold start
+  std::string method;  // its name in the table, e.g. "SIFT+PnP"
+  FrameOrder order;
+  FramePlan plan;  // the frames played, in the order played (the same every pass)
   // Per frame index (not processing order), first pass: the cube error, NaN without a pose;
-  // frames without a true pose are NaN too.
+  // frames without a true pose or not played are NaN too.
   std::vector<double> errorPx;
   std::vector<std::optional<RigidPose>> poses;  // per frame index, first pass: world->camera
-  std::vector<double> cpuMs;                    // every processed frame, every pass
-  std::map<std::string, int> noPose;  // reason -> frames with a true pose but none estimated
+  std::vector<double> cpuMs;                    // every played frame, every pass
+  std::map<std::string, int> noPose;  // reason -> played frames with a true pose but none estimated
 };
 
 struct MethodSummary {
-  int frames = 0;  // frames with a true pose
+  int frames = 0;  // played frames with a true pose (the scored frames)
   int posed = 0;   // ... of them given a pose
   // Over the posed frames with a finite error (NaN when none).
   double meanPx = NAN, p95Px = NAN, maxPx = NAN;
@@ -71,8 +76,22 @@ struct MethodSummary {
   double coveragePercent() const { return frames > 0 ? 100.0 * posed / frames : 0.0; }
 };
 
-// `truth[k]`: frame k has a true pose (frames without one are not scored).
+// `truth[k]`: frame k has a true pose (frames without one, or not in run.plan, are not scored).
 MethodSummary summarise(const MethodRun& run, const std::vector<bool>& truth);
+
+// How a method came back after one cut of a cuts:N order.
+struct CutRecovery {
+  std::size_t position = 0;        // in the plan: the first frame after the cut
+  int fromFrame = 0, toFrame = 0;  // the frames played just before and just after the cut
+  int segmentFrames = 0;           // frames from the cut to the next cut (or the end)
+  // Frames after the cut before the first pose within kGoodPosePx (re-acquired within k frames;
+  // 0: the first frame after the cut is already good); -1: none in the segment.
+  int framesToReacquire = -1;
+  int wrong = 0;  // poses more than kWrongPosePx off from the cut to the next cut (or the end)
+};
+
+// Per cut of run.plan (none unless the order has cuts), from run.errorPx.
+std::vector<CutRecovery> cutRecoveries(const MethodRun& run);
 
 struct GroundTruthBenchmarkResult {
   std::string framesDescription, groundTruthDescription;
@@ -87,12 +106,32 @@ struct GroundTruthBenchmarkResult {
   int passes = 0;
   int mapPoints = 0, mapKeypoints = 0, mapKeypointPoints = 0;  // reftrack's map
   std::vector<std::pair<std::string, int>> modelPoints;  // peers' triangulated points, by method
-  std::vector<MethodRun> runs;  // per method in table order: sequence, then shuffled
+  std::vector<FrameOrder> orders;                        // as options.orders named them
+  std::vector<MethodRun> runs;  // per method in table order, then per order
   double seconds = 0.0;         // wall time of the preparation and every run
 };
 
 // Progress lines (one per method and order) for the caller to print.
 using BenchmarkProgress = std::function<void(const std::string&)>;
+
+// One method behind a common face: a pose for a frame (or the reason there is none), a cold
+// start, and a fresh state for a new run.
+class PoseMethod {
+ public:
+  virtual ~PoseMethod() = default;
+  virtual std::string name() const = 0;
+  virtual void startRun() = 0;   // before a run over the frames (outside the timing)
+  virtual void coldStart() = 0;  // before each frame of a cold-start order (outside the timing)
+  // The world->camera pose of `frame`, or nullopt with `reason` set.
+  virtual std::optional<RigidPose> locate(const cv::Mat& frame, std::string& reason) = 0;
+};
+
+// One pass of `method` over run.plan: startRun(), then each planned frame of `sequence` in turn
+// (coldStart() before each only when the plan says so), its thread CPU time appended to
+// run.cpuMs; with `score` (the first pass) each frame's pose, cube error against its true pose
+// and the reasons for no pose are recorded too (run.errorPx and run.poses hold every frame index).
+void playFrames(PoseMethod& method, const GroundTruthSequence& sequence,
+                const std::vector<Eigen::Vector3d>& cube, bool score, MethodRun& run);
 
 // The mean pixel distance of the cube's vertices between `estimate` and `truth` (world->camera),
 // projected with K alone; vertices behind either camera are left out, and a pose that leaves

@@ -27,19 +27,65 @@ std::string textf(const char* fmt, ...) {
   return buffer;
 }
 
-// "ORB+PnP+Kalman" -> "orb_pnp_kalman".
+// "ORB+PnP+Kalman" in cuts:8 -> "orb_pnp_kalman_cuts:8_px".
 std::string columnName(const MethodRun& run) {
   std::string name;
   for (char c : run.method)
     name += std::isalnum(static_cast<unsigned char>(c))
                 ? static_cast<char>(std::tolower(static_cast<unsigned char>(c)))
                 : '_';
-  return name + (run.shuffled ? "_shuffled_px" : "_sequence_px");
+  return name + "_" + run.order.name + "_px";
 }
 
 // A number, or "-" when there is none.
 std::string cell(double value, int decimals) {
   return std::isnan(value) ? std::string("-") : textf("%.*f", decimals, value);
+}
+
+// What an order plays, for the table's header ("" for the sequence order).
+std::string describe(const FrameOrder& order, int frames) {
+  switch (order.kind) {
+    case FrameOrderKind::Sequence:
+      return "";
+    case FrameOrderKind::Shuffled:
+      return "shuffled: every frame a cold start";
+    case FrameOrderKind::ShuffledSequence:
+      return "shuffled-sequence: the shuffled order as one sequence, no reset";
+    case FrameOrderKind::Cuts:
+      return textf("%s: %d segments of about %d frames in a shuffled order, one sequence, no reset",
+                   order.name.c_str(), order.count, frames / std::max(order.count, 1));
+    case FrameOrderKind::Stride:
+      return textf("%s: frames 0, %d, %d, ... in order, one sequence (only those scored)",
+                   order.name.c_str(), order.count, 2 * order.count);
+  }
+  return "";
+}
+
+// One line of a cuts:N run: per cut its position, the frames either side, the frames needed to
+// re-acquire (k) and the wrong poses until the next cut; then the worst.
+std::string cutsLine(const MethodRun& run) {
+  const std::vector<CutRecovery> cuts = cutRecoveries(run);
+  std::string out = textf(
+      "%s %s: per cut @position frame->frame: re-acquired within k frames (<= %.1f px), wrong "
+      "(> %.0f px) until the next cut:",
+      run.method.c_str(), run.order.name.c_str(), kGoodPosePx, kWrongPosePx);
+  int worst = 0, wrong = 0, never = 0;
+  for (std::size_t i = 0; i < cuts.size(); ++i) {
+    const CutRecovery& c = cuts[i];
+    out += textf("%s @%zu %d->%d k=%s wrong=%d", i ? "," : "", c.position, c.fromFrame, c.toFrame,
+                 c.framesToReacquire < 0 ? textf("never(%d)", c.segmentFrames).c_str()
+                                         : std::to_string(c.framesToReacquire).c_str(),
+                 c.wrong);
+    worst = std::max(worst, c.framesToReacquire);
+    never += c.framesToReacquire < 0 ? 1 : 0;
+    wrong += c.wrong;
+  }
+  const std::string maxK = never > 0
+                               ? textf("never (%d of %zu cuts not re-acquired)", never, cuts.size())
+                               : std::to_string(worst);
+  out += textf("; max k=%s, %d wrong after the cuts (target: 0 wrong, every k <= 1)\n",
+               maxK.c_str(), wrong);
+  return out;
 }
 
 const cv::Scalar kColours[] = {{200, 90, 20},  {30, 30, 210},  {40, 160, 40},
@@ -70,36 +116,52 @@ std::string groundTruthBenchmarkTable(const GroundTruthBenchmarkResult& r) {
       "cube: base centre (%.3f, %.3f, %.3f) m, edge %.3f m; error: mean distance of its 8 "
       "vertices projected with K alone, estimated vs true pose (px)\n",
       r.cubeCentre.x(), r.cubeCentre.y(), r.cubeCentre.z(), r.cubeEdge);
+  std::string orders;
+  bool shuffles = false;
+  for (const FrameOrder& order : r.orders) {
+    const std::string what = describe(order, r.frames);
+    if (!what.empty()) orders += (orders.empty() ? "" : "; ") + what;
+    shuffles = shuffles ||
+               (order.kind != FrameOrderKind::Sequence && order.kind != FrameOrderKind::Stride);
+  }
+  if (shuffles)
+    orders += textf(", order seed %llu", static_cast<unsigned long long>(r.shuffleSeed));
+  if (!orders.empty()) out += orders + "; ";
   out += textf(
-      "shuffled: every frame a cold start, order seed %llu; CPU: thread time per frame, one "
-      "thread, %d pass(es); cpu_x: median / reftrack's in the same order\n",
-      static_cast<unsigned long long>(r.shuffleSeed), r.passes);
-  out += textf("%-15s %-8s %7s %7s %6s %8s %8s %8s %5s %7s %10s %6s\n", "method", "order", "frames",
-               "posed", "cover%", "mean_px", "p95_px", "max_px", ">5px", "<=1.5px", "cpu_ms_med",
-               "cpu_x");
+      "CPU: thread time per frame, one thread, %d pass(es); cpu_x: median / reftrack's in the "
+      "same order\n",
+      r.passes);
+  int orderWidth = 8;
+  for (const FrameOrder& order : r.orders)
+    orderWidth = std::max(orderWidth, static_cast<int>(order.name.size()));
+  out += textf("%-15s %-*s %7s %7s %6s %8s %8s %8s %5s %7s %10s %6s\n", "method", orderWidth,
+               "order", "frames", "posed", "cover%", "mean_px", "p95_px", "max_px", ">5px",
+               "<=1.5px", "cpu_ms_med", "cpu_x");
   for (const MethodRun& run : r.runs) {
     const MethodSummary s = summarise(run, r.truth);
     double reftrackCpu = NAN;
     for (const MethodRun& other : r.runs)
-      if (other.method == "reftrack" && other.shuffled == run.shuffled)
+      if (other.method == "reftrack" && other.order.name == run.order.name)
         reftrackCpu = summarise(other, r.truth).cpuMedianMs;
-    out += textf("%-15s %-8s %7d %7d %6.1f %8s %8s %8s %5d %7d %10.2f %6s\n", run.method.c_str(),
-                 run.shuffled ? "shuffled" : "sequence", s.frames, s.posed, s.coveragePercent(),
+    out += textf("%-15s %-*s %7d %7d %6.1f %8s %8s %8s %5d %7d %10.2f %6s\n", run.method.c_str(),
+                 orderWidth, run.order.name.c_str(), s.frames, s.posed, s.coveragePercent(),
                  cell(s.meanPx, 3).c_str(), cell(s.p95Px, 3).c_str(), cell(s.maxPx, 2).c_str(),
                  s.wrong, s.good, s.cpuMedianMs, cell(s.cpuMedianMs / reftrackCpu, 2).c_str());
   }
+  for (const MethodRun& run : r.runs)
+    if (run.order.kind == FrameOrderKind::Cuts) out += cutsLine(run);
   for (const MethodRun& run : r.runs) {
     const int behind = summarise(run, r.truth).behind;
     if (behind > 0)
       out += textf(
           "%s %s: %d pose(s) put the whole cube behind the camera (counted in >5px, not in "
           "mean_px, p95_px, max_px)\n",
-          run.method.c_str(), run.shuffled ? "shuffled" : "sequence", behind);
+          run.method.c_str(), run.order.name.c_str(), behind);
   }
   for (const MethodRun& run : r.runs)
     for (const auto& [reason, frames] : run.noPose)
-      out += textf("no pose, %s %s: %d x %s\n", run.method.c_str(),
-                   run.shuffled ? "shuffled" : "sequence", frames, reason.c_str());
+      out += textf("no pose, %s %s: %d x %s\n", run.method.c_str(), run.order.name.c_str(), frames,
+                   reason.c_str());
   out += textf("benchmark time: %.1f s (preparation and every run, wall clock)\n", r.seconds);
   return out;
 }
@@ -112,12 +174,15 @@ void writeGroundTruthBenchmarkCsv(const GroundTruthBenchmarkResult& r,
     out << "frame,true_pose";
     for (const MethodRun& run : r.runs) out << ',' << columnName(run);
     out << '\n' << std::setprecision(8);
+    std::vector<std::vector<bool>> played;
+    for (const MethodRun& run : r.runs) played.push_back(playedFrames(run.plan, r.frames));
     for (int k = 0; k < r.frames; ++k) {
-      out << k << ',' << (r.truth[static_cast<std::size_t>(k)] ? 1 : 0);
-      for (const MethodRun& run : r.runs) {
+      const std::size_t frame = static_cast<std::size_t>(k);
+      out << k << ',' << (r.truth[frame] ? 1 : 0);
+      for (std::size_t i = 0; i < r.runs.size(); ++i) {
         out << ',';
-        const double e = run.errorPx[static_cast<std::size_t>(k)];
-        if (!std::isnan(e)) out << e;
+        const double e = r.runs[i].errorPx[frame];
+        if (played[i][frame] && !std::isnan(e)) out << e;
       }
       out << '\n';
     }
@@ -127,15 +192,18 @@ void writeGroundTruthBenchmarkCsv(const GroundTruthBenchmarkResult& r,
 
 void writeGroundTruthBenchmarkPlot(const GroundTruthBenchmarkResult& r,
                                    const std::filesystem::path& png) {
-  PlotCanvas plot(textf("Cube error per frame, sequence order (%d frames; above %.0f px drawn at "
+  const std::string order = r.orders.empty() ? std::string("sequence") : r.orders.front().name;
+  PlotCanvas plot(textf("Cube error per frame, %s order (%d frames; above %.0f px drawn at "
                         "%.0f; gaps: no pose)",
-                        r.frames, kPlotErrorCapPx, kPlotErrorCapPx),
+                        order.c_str(), r.frames, kPlotErrorCapPx, kPlotErrorCapPx),
                   "frame", "mean cube vertex error (px)", cv::Size(1200, 600));
   std::size_t colour = 0;
   for (const MethodRun& run : r.runs) {
-    if (run.shuffled) continue;
+    if (run.order.name != order) continue;
+    const std::vector<bool> played = playedFrames(run.plan, r.frames);
     std::vector<double> x, y;
     for (int k = 0; k < r.frames; ++k) {
+      if (!played[static_cast<std::size_t>(k)]) continue;
       x.push_back(k);
       y.push_back(std::min(run.errorPx[static_cast<std::size_t>(k)], kPlotErrorCapPx));
     }

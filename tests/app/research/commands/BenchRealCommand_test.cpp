@@ -57,7 +57,10 @@ std::map<std::string, std::vector<std::string>> tableRows(const std::string& out
     std::istringstream fields(line);
     std::string method, order;
     fields >> method >> order;
-    if (order != "sequence" && order != "shuffled") break;
+    const bool isOrder = (order == "sequence" || order.rfind("shuffled", 0) == 0 ||
+                          order.rfind("cuts:", 0) == 0 || order.rfind("stride:", 0) == 0) &&
+                         order.back() != ':';  // not the line of a cuts:N run
+    if (!isOrder) break;
     std::vector<std::string> numbers;
     for (std::string f; fields >> f;) numbers.push_back(f);
     rows[method + " " + order] = numbers;
@@ -156,6 +159,56 @@ TEST(BenchRealCommand, DeskClipTableFilesAndPlausiblePeers) {
   }
 }
 
+// reftrack alone on the desk clip's first 24 frames in the other orders: a row per order (stride:5
+// scores its 5 frames only), a line of the cuts:3 run's two cuts, and CSV columns named by order
+// whose stride column is empty on the frames not played. The numbers are not bounded here (the
+// engine is being changed); the order logic is tested in FrameOrder_test and
+// GroundTruthBenchmark_test.
+TEST(BenchRealCommand, DeskClipOrdersForReftrackAlone) {
+  const auto data = sharedDataDir();
+  const auto desk = data ? *data / "desk-chessboard" : std::filesystem::path();
+  if (!data || !std::filesystem::is_directory(desk / "frames"))
+    GTEST_SKIP() << "../shared/data/desk-chessboard not available (the shared real recordings)";
+  const auto dir = freshTempDir("BenchRealCommandDeskOrders");
+  const auto r = runReftrack(
+      "bench-real --input " + (desk / "frames").string() + " --camera " +
+          (desk / "camera.yml").string() + " --gt " + (desk / "groundtruth.txt").string() +
+          " --ref-frames 0,40 --cube-centre 0.16,-0.10,0 --cube-edge 0.1 --frames 24"
+          " --methods reftrack --order sequence,shuffled-sequence,cuts:3,stride:5 --out " +
+          (dir / "out").string(),
+      dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto rows = tableRows(r.out);
+  EXPECT_EQ(rows.size(), 4u) << r.out;
+  for (const auto& [order, frames] :
+       {std::pair{"sequence", "24"}, std::pair{"shuffled-sequence", "24"},
+        std::pair{"cuts:3", "24"}, std::pair{"stride:5", "5"}}) {
+    const std::string key = std::string("reftrack ") + order;
+    ASSERT_EQ(rows.count(key), 1u) << key << "\n" << r.out;
+    ASSERT_EQ(rows.at(key).size(), 10u) << key;
+    EXPECT_EQ(rows.at(key)[0], frames) << key;
+    EXPECT_NE(r.err.find(std::string("reftrack, ") + order + " order: "), std::string::npos)
+        << r.err;
+  }
+  const std::size_t cuts = r.out.find("reftrack cuts:3: per cut @position frame->frame");
+  ASSERT_NE(cuts, std::string::npos) << r.out;
+  const std::string cutsLine = r.out.substr(cuts, r.out.find('\n', cuts) - cuts);
+  EXPECT_NE(cutsLine.find(": @8 "), std::string::npos) << cutsLine;
+  EXPECT_NE(cutsLine.find(", @16 "), std::string::npos) << cutsLine;
+  EXPECT_NE(cutsLine.find("; max k="), std::string::npos) << cutsLine;
+  const auto csv = dir / "out" / "cube_errors.csv";
+  const std::vector<double> sequence = csvColumn(csv, "reftrack_sequence_px");
+  const std::vector<double> stride = csvColumn(csv, "reftrack_stride:5_px");
+  ASSERT_EQ(sequence.size(), 24u);
+  ASSERT_EQ(stride.size(), 24u);
+  EXPECT_EQ(csvColumn(csv, "reftrack_shuffled-sequence_px").size(), 24u);
+  EXPECT_EQ(csvColumn(csv, "reftrack_cuts:3_px").size(), 24u);
+  for (std::size_t k = 0; k < 24; ++k)
+    if (k % 5 != 0) {
+      EXPECT_TRUE(std::isnan(stride[k])) << k;
+    }
+}
+
 namespace {
 
 // A folder of `count` noise frames of `size`, a camera file for `cameraSize` and a ground truth
@@ -221,6 +274,17 @@ TEST(BenchRealCommand, InputModeBadInputIsAClearErrorWithNoOutputs) {
   expectError(ok.args("2,2"), 2, "given twice");
   expectError(ok.args() + " --clip card.mp4", 2, "excludes");
   expectError(ok.args() + " --methods reftrack,surf", 2, "unknown method 'surf'");
+  expectError(ok.args() + " --order sequence,zigzag", 2, "--order: unknown order 'zigzag'");
+  expectError(ok.args() + " --order cuts:1", 2,
+              "--order: 'cuts:1': N (the segments) must be a whole number >= 2");
+  expectError(ok.args() + " --order stride:0", 2,
+              "--order: 'stride:0': K (the stride) must be a whole number >= 1");
+  expectError(ok.args() + " --order sequence,sequence", 2, "--order: 'sequence' given twice");
+  // Beyond the 3 frames: known once the recording is read, before the map is prepared.
+  expectError(ok.args() + " --order cuts:4", 1,
+              "--order: 'cuts:4': 4 segments but only 3 frames are benchmarked");
+  expectError(ok.args() + " --order sequence,stride:4", 1,
+              "--order: 'stride:4': a stride of 4 but only 3 frames are benchmarked");
   expectError("bench-real --input " + ok.frames.string() + " --camera " + ok.camera.string(), 2,
               "--ref-frames");
 }

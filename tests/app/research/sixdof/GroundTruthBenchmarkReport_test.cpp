@@ -30,21 +30,23 @@ GroundTruthBenchmarkResult smallResult() {
   r.mapKeypoints = 6000;
   r.mapKeypointPoints = 248;
   r.modelPoints = {{"SIFT+PnP", 162}};
-  auto run = [](const std::string& method, bool shuffled, std::vector<double> errors,
+  r.orders = parseFrameOrders({"sequence", "shuffled"});
+  auto run = [](const std::string& method, const std::string& order, std::vector<double> errors,
                 std::vector<double> cpu) {
     MethodRun m;
     m.method = method;
-    m.shuffled = shuffled;
+    m.order = parseFrameOrder(order);
+    m.plan = planFrames(m.order, 4, 7);
     m.errorPx = std::move(errors);
     m.poses.resize(m.errorPx.size());
     m.cpuMs = std::move(cpu);
     return m;
   };
-  r.runs = {run("reftrack", false, {0.2, 0.4, NAN, NAN}, {2, 2, 2, 2}),
-            run("reftrack", true, {NAN, 6.0, 0.3, NAN}, {20, 20, 20, 20}),
-            run("SIFT+PnP", false, {0.5, 12.0, 1.0, 0.7}, {80, 80, 80, 80}),
-            run("SIFT+PnP", true, {0.5, 12.0, 1.0, 0.7}, {90, 90, 90, 90}),
-            run("ORB+PnP", false, {INFINITY, 0.3, NAN, NAN}, {50, 50, 50, 50})};
+  r.runs = {run("reftrack", "sequence", {0.2, 0.4, NAN, NAN}, {2, 2, 2, 2}),
+            run("reftrack", "shuffled", {NAN, 6.0, 0.3, NAN}, {20, 20, 20, 20}),
+            run("SIFT+PnP", "sequence", {0.5, 12.0, 1.0, 0.7}, {80, 80, 80, 80}),
+            run("SIFT+PnP", "shuffled", {0.5, 12.0, 1.0, 0.7}, {90, 90, 90, 90}),
+            run("ORB+PnP", "sequence", {INFINITY, 0.3, NAN, NAN}, {50, 50, 50, 50})};
   r.runs[0].noPose["lost"] = 1;
   r.runs[1].noPose["relocalisation: not enough support"] = 1;
   r.seconds = 12.5;
@@ -106,6 +108,87 @@ TEST(GroundTruthBenchmarkReport, TableHasARowPerMethodAndOrder) {
   EXPECT_NE(table.find("ORB+PnP sequence: 1 pose(s) put the whole cube behind the camera"),
             std::string::npos)
       << table;
+}
+
+// The default orders print as they always have: the orders line and an 8-wide order column.
+TEST(GroundTruthBenchmarkReport, DefaultOrdersKeepTheirHeader) {
+  const std::string table = groundTruthBenchmarkTable(smallResult());
+  EXPECT_NE(table.find("\nshuffled: every frame a cold start, order seed 7; CPU: thread time per "
+                       "frame, one thread, 1 pass(es); cpu_x: median / reftrack's in the same "
+                       "order\nmethod          order     frames"),
+            std::string::npos)
+      << table;
+}
+
+// Twelve frames, reftrack in shuffled-sequence, cuts:3 and stride:4: the order column widens to
+// the longest name, stride scores only its frames, a cuts line gives each cut's frames to
+// re-acquire and wrong poses, and the CSV columns name the orders.
+TEST(GroundTruthBenchmarkReport, OtherOrdersAreNamedInTableAndCsv) {
+  GroundTruthBenchmarkResult r = smallResult();
+  r.frames = 12;
+  r.truth.assign(12, true);
+  r.orders = parseFrameOrders({"shuffled-sequence", "cuts:3", "stride:4"});
+  r.runs.clear();
+  for (const FrameOrder& order : r.orders) {
+    MethodRun m;
+    m.method = "reftrack";
+    m.order = order;
+    m.plan = planFrames(order, 12, 7);
+    m.errorPx.assign(12, 0.5);
+    m.poses.resize(12);
+    m.cpuMs.assign(m.plan.frames.size(), 3.0);
+    r.runs.push_back(m);
+  }
+  // cuts:3: the first frame after the first cut 8 px off, then 2 px, then good.
+  MethodRun& cuts = r.runs[1];
+  ASSERT_EQ(cuts.plan.cuts.size(), 2u);
+  const std::size_t cut = cuts.plan.cuts[0];
+  cuts.errorPx[static_cast<std::size_t>(cuts.plan.frames[cut])] = 8.0;
+  cuts.errorPx[static_cast<std::size_t>(cuts.plan.frames[cut + 1])] = 2.0;
+  const std::string table = groundTruthBenchmarkTable(r);
+  EXPECT_NE(table.find("method          order              frames"), std::string::npos) << table;
+  EXPECT_NE(table.find("reftrack        shuffled-sequence      12      12  100.0    0.500"),
+            std::string::npos)
+      << table;
+  EXPECT_NE(table.find("reftrack        stride:4                3       3  100.0    0.500"),
+            std::string::npos)
+      << table;
+  EXPECT_NE(table.find("shuffled-sequence: the shuffled order as one sequence, no reset; cuts:3: "
+                       "3 segments of about 4 frames in a shuffled order, one sequence, no reset; "
+                       "stride:4: frames 0, 4, 8, ... in order, one sequence (only those scored), "
+                       "order seed 7"),
+            std::string::npos)
+      << table;
+  const std::string cutsLine =
+      "reftrack cuts:3: per cut @position frame->frame: re-acquired within k frames (<= 1.5 px), "
+      "wrong (> 5 px) until the next cut: @4 " +
+      std::to_string(cuts.plan.frames[cut - 1]) + "->" + std::to_string(cuts.plan.frames[cut]) +
+      " k=2 wrong=1, @8 " + std::to_string(cuts.plan.frames[7]) + "->" +
+      std::to_string(cuts.plan.frames[8]) +
+      " k=0 wrong=0; max k=2, 1 wrong after the cuts (target: 0 wrong, every k <= 1)\n";
+  EXPECT_NE(table.find(cutsLine), std::string::npos) << table << "\n" << cutsLine;
+
+  const auto dir = test::freshTempDir("GroundTruthBenchmarkReportOrders");
+  writeGroundTruthBenchmarkCsv(r, dir / "e.csv");
+  const std::vector<std::string> csv = linesOf(test::readTextFile(dir / "e.csv"));
+  ASSERT_EQ(csv.size(), 13u);
+  EXPECT_EQ(csv[0],
+            "frame,true_pose,reftrack_shuffled-sequence_px,reftrack_cuts:3_px,"
+            "reftrack_stride:4_px");
+  EXPECT_EQ(csv[2], "1,1,0.5,0.5,");  // frame 1: not played by stride:4
+  EXPECT_EQ(csv[5], "4,1,0.5,0.5,0.5");
+  // A segment never within 1.5 px after its cut: the worst is "never".
+  GroundTruthBenchmarkResult worse = r;
+  MethodRun& worseCuts = worse.runs[1];
+  for (std::size_t i = 8; i < 12; ++i)
+    worseCuts.errorPx[static_cast<std::size_t>(worseCuts.plan.frames[i])] = 7.0;
+  const std::string never = groundTruthBenchmarkTable(worse);
+  EXPECT_NE(never.find(" k=never(4) wrong=4; max k=never (1 of 2 cuts not re-acquired), 5 wrong "
+                       "after the cuts"),
+            std::string::npos)
+      << never;
+  writeGroundTruthBenchmarkPlot(r, dir / "e.png");
+  EXPECT_FALSE(cv::imread((dir / "e.png").string()).empty());
 }
 
 TEST(GroundTruthBenchmarkReport, WritesTableCsvAndPlotIntoTheFolder) {

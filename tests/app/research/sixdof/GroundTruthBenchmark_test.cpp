@@ -65,6 +65,7 @@ TEST(GroundTruthBenchmark, CubeErrorIsTheMeanVertexDistanceThroughKAlone) {
 // behind the camera (infinite error) is posed and wrong, but left out of mean / p95 / max.
 TEST(GroundTruthBenchmark, SummaryCountsOverFramesWithATruePose) {
   MethodRun run;
+  run.plan = planFrames(parseFrameOrder("sequence"), 8, 1);
   run.errorPx = {0.5, NAN, 1.5, 7.0, 2.0, NAN, 9.0, INFINITY};
   run.cpuMs = {1.0, 4.0, 2.0, 3.0, 10.0};
   const std::vector<bool> truth = {true, true, true, true, true, true, false, true};
@@ -79,10 +80,201 @@ TEST(GroundTruthBenchmark, SummaryCountsOverFramesWithATruePose) {
   EXPECT_EQ(s.wrong, 2);
   EXPECT_EQ(s.good, 2);  // 1.5 px counts as good
   EXPECT_DOUBLE_EQ(s.cpuMedianMs, 3.0);
-  const MethodSummary none = summarise(MethodRun{{}, false, {NAN, NAN}, {}, {}, {}}, {true, true});
+  MethodRun unposed;
+  unposed.plan = planFrames(parseFrameOrder("sequence"), 2, 1);
+  unposed.errorPx = {NAN, NAN};
+  const MethodSummary none = summarise(unposed, {true, true});
+  EXPECT_EQ(none.frames, 2);
   EXPECT_EQ(none.posed, 0);
   EXPECT_TRUE(std::isnan(none.meanPx));
   EXPECT_DOUBLE_EQ(none.coveragePercent(), 0.0);
+}
+
+// stride:K: only the frames played are scored; the others count neither as frames nor as frames
+// without a pose (and an error recorded on one is ignored).
+TEST(GroundTruthBenchmark, SummaryScoresOnlyThePlayedFrames) {
+  MethodRun run;
+  run.order = parseFrameOrder("stride:3");
+  run.plan = planFrames(run.order, 8, 1);  // frames 0, 3, 6
+  run.errorPx = {0.5, NAN, NAN, 6.0, 0.2, NAN, NAN, NAN};
+  const MethodSummary s = summarise(run, std::vector<bool>(8, true));
+  EXPECT_EQ(s.frames, 3);
+  EXPECT_EQ(s.posed, 2);
+  EXPECT_EQ(s.wrong, 1);
+  EXPECT_EQ(s.good, 1);  // frame 4's 0.2 px is not played: not scored
+  EXPECT_DOUBLE_EQ(s.meanPx, (0.5 + 6.0) / 2);
+}
+
+// Per cut: the frames either side, the frames after the cut before the first pose within 1.5 px
+// (0: the first after the cut), and the poses more than 5 px off until the next cut.
+TEST(GroundTruthBenchmark, CutRecoveriesCountFramesToReacquireAndWrongPoses) {
+  MethodRun run;
+  run.order = parseFrameOrder("cuts:3");
+  run.plan.frames = {6, 7, 8, 0, 1, 2, 3, 4, 5};
+  run.plan.cuts = {3, 6};
+  //            frame:  0    1    2    3    4    5    6    7    8
+  run.errorPx = {9.0, NAN, 1.4, 0.3, 0.2, 0.1, 2.0, 0.5, 0.4};
+  std::vector<CutRecovery> cuts = cutRecoveries(run);
+  ASSERT_EQ(cuts.size(), 2u);
+  EXPECT_EQ(cuts[0].position, 3u);
+  EXPECT_EQ(cuts[0].fromFrame, 8);
+  EXPECT_EQ(cuts[0].toFrame, 0);
+  EXPECT_EQ(cuts[0].segmentFrames, 3);
+  EXPECT_EQ(cuts[0].framesToReacquire, 2);  // 9 px (wrong), no pose, then 1.4 px
+  EXPECT_EQ(cuts[0].wrong, 1);
+  EXPECT_EQ(cuts[1].fromFrame, 2);
+  EXPECT_EQ(cuts[1].toFrame, 3);
+  EXPECT_EQ(cuts[1].framesToReacquire, 0);
+  EXPECT_EQ(cuts[1].wrong, 0);
+  // Never within 1.5 px in the segment: -1.
+  run.errorPx[0] = run.errorPx[2] = 6.0;
+  cuts = cutRecoveries(run);
+  EXPECT_EQ(cuts[0].framesToReacquire, -1);
+  EXPECT_EQ(cuts[0].wrong, 2);
+  // No cuts in the other orders.
+  run.plan = planFrames(parseFrameOrder("shuffled-sequence"), 9, 1);
+  EXPECT_TRUE(cutRecoveries(run).empty());
+}
+
+// A stand-in tracker that carries state between frames: it answers each frame with the true pose
+// of the frame it saw before (nothing after a start or a cold start), as a tracker that keeps its
+// last pose would. It records what it was asked.
+class LaggingMethod final : public PoseMethod {
+ public:
+  explicit LaggingMethod(const GroundTruthSequence& s) : s_(s) {}
+  std::string name() const override { return "lagging"; }
+  void startRun() override {
+    ++starts;
+    last_.reset();
+  }
+  void coldStart() override {
+    ++coldStarts;
+    last_.reset();
+  }
+  std::optional<RigidPose> locate(const cv::Mat& frame, std::string& reason) override {
+    const int k = frame.at<unsigned char>(0, 0);  // the frames are filled with their index
+    seen.push_back(k);
+    const std::optional<RigidPose> answer = last_;
+    last_ = s_.truth[static_cast<std::size_t>(k)];
+    if (!answer) reason = "no earlier frame";
+    return answer;
+  }
+  int starts = 0, coldStarts = 0;
+  std::vector<int> seen;
+
+ private:
+  const GroundTruthSequence& s_;
+  std::optional<RigidPose> last_;
+};
+
+// 40 frames in 4 views of 10: 0.05 mm between frames of a view (under 1 px across a view), 3 cm
+// between views (tens of px). Frame k is a small image filled with k.
+GroundTruthSequence fourViews() {
+  GroundTruthSequence s;
+  s.framesDescription = "four views";
+  s.groundTruthDescription = "made up";
+  s.camera = smallCamera();
+  for (int k = 0; k < 40; ++k) {
+    s.frames.emplace_back(4, 4, CV_8UC1, cv::Scalar(k));
+    s.timestamps.push_back(k / 30.0);
+    s.truth.push_back(lookingDown({0.00005 * k + 0.03 * (k / 10), 0, 0}, 0));
+  }
+  return s;
+}
+
+MethodRun playedRun(const std::string& order, int frames) {
+  MethodRun run;
+  run.order = parseFrameOrder(order);
+  run.plan = planFrames(run.order, frames, 3);
+  run.errorPx.assign(static_cast<std::size_t>(frames), NAN);
+  run.poses.resize(static_cast<std::size_t>(frames));
+  return run;
+}
+
+// Only `shuffled` resets the method between frames: shuffled-sequence plays the same frames in
+// the same order as one run, so a method carrying its state gives a (lagging) pose on every frame
+// after the first, and after each jump between views a confidently wrong one.
+TEST(GroundTruthBenchmark, OnlyTheShuffledOrderResetsBetweenFrames) {
+  const GroundTruthSequence s = fourViews();
+  const std::vector<Eigen::Vector3d> cube = cubeOn({0.16, -0.10, 0.0}, 0.1);
+  const std::vector<bool> truth(40, true);
+  MethodRun cold = playedRun("shuffled", 40), warm = playedRun("shuffled-sequence", 40);
+  LaggingMethod coldMethod(s), warmMethod(s);
+  playFrames(coldMethod, s, cube, true, cold);
+  playFrames(warmMethod, s, cube, true, warm);
+  EXPECT_EQ(coldMethod.starts, 1);
+  EXPECT_EQ(coldMethod.coldStarts, 40);
+  EXPECT_EQ(warmMethod.starts, 1);
+  EXPECT_EQ(warmMethod.coldStarts, 0);
+  EXPECT_EQ(coldMethod.seen, cold.plan.frames);
+  EXPECT_EQ(warmMethod.seen, cold.plan.frames);  // the same order
+  EXPECT_EQ(cold.cpuMs.size(), 40u);
+  const MethodSummary c = summarise(cold, truth), w = summarise(warm, truth);
+  EXPECT_EQ(c.posed, 0);
+  EXPECT_EQ(cold.noPose.at("no earlier frame"), 40);
+  EXPECT_EQ(w.posed, 39);
+  // Each posed frame's error is that of the frame played before it, against this one's truth.
+  int jumps = 0;
+  for (std::size_t i = 1; i < warm.plan.frames.size(); ++i) {
+    const int k = warm.plan.frames[i], before = warm.plan.frames[i - 1];
+    jumps += k / 10 != before / 10 ? 1 : 0;
+    EXPECT_NEAR(warm.errorPx[static_cast<std::size_t>(k)],
+                cubeErrorPx(s.camera, cube, *s.truth[static_cast<std::size_t>(k)],
+                            *s.truth[static_cast<std::size_t>(before)]),
+                1e-12);
+  }
+  EXPECT_GT(jumps, 20);  // a shuffle of 40 frames in 4 views changes view most of the time
+  EXPECT_EQ(w.wrong, jumps);
+  EXPECT_EQ(w.good, 39 - jumps);
+  // A second pass plays again (timing) but scores nothing new.
+  playFrames(warmMethod, s, cube, false, warm);
+  EXPECT_EQ(warmMethod.starts, 2);
+  EXPECT_EQ(warm.cpuMs.size(), 80u);
+  EXPECT_EQ(summarise(warm, truth).posed, 39);
+}
+
+// cuts:4 over the four views: one sequence, no reset; after each cut the lagging method is wrong
+// once (it still holds the other view's pose) and good from the next frame (re-acquired within
+// 1). stride:3 gives it only frames 0, 3, ..., 39, and only those are scored.
+TEST(GroundTruthBenchmark, CutsAndStridePlayOneSequence) {
+  const GroundTruthSequence s = fourViews();
+  const std::vector<Eigen::Vector3d> cube = cubeOn({0.16, -0.10, 0.0}, 0.1);
+  const std::vector<bool> truth(40, true);
+  MethodRun cuts = playedRun("cuts:4", 40);
+  LaggingMethod method(s);
+  playFrames(method, s, cube, true, cuts);
+  EXPECT_EQ(method.coldStarts, 0);
+  EXPECT_EQ(method.seen, cuts.plan.frames);
+  const std::vector<CutRecovery> recoveries = cutRecoveries(cuts);
+  ASSERT_EQ(recoveries.size(), 3u);
+  for (const CutRecovery& r : recoveries) {
+    EXPECT_EQ(r.segmentFrames, 10);
+    EXPECT_EQ(r.toFrame % 10, 0);  // a segment is a view
+    EXPECT_EQ(r.framesToReacquire, 1);
+    EXPECT_EQ(r.wrong, 1);
+  }
+  const MethodSummary c = summarise(cuts, truth);
+  EXPECT_EQ(c.frames, 40);
+  EXPECT_EQ(c.posed, 39);
+  EXPECT_EQ(c.wrong, 3);
+
+  MethodRun stride = playedRun("stride:3", 40);
+  LaggingMethod strided(s);
+  playFrames(strided, s, cube, true, stride);
+  std::vector<int> expected;
+  for (int k = 0; k < 40; k += 3) expected.push_back(k);
+  EXPECT_EQ(strided.seen, expected);
+  EXPECT_EQ(strided.coldStarts, 0);
+  EXPECT_EQ(stride.cpuMs.size(), expected.size());
+  const MethodSummary st = summarise(stride, truth);
+  EXPECT_EQ(st.frames, 14);  // played frames only: unplayed ones are not "not posed"
+  EXPECT_EQ(st.posed, 13);
+  EXPECT_EQ(stride.noPose.at("no earlier frame"), 1);
+  EXPECT_EQ(st.wrong, 3);  // 9 -> 12, 18 -> 21, 27 -> 30: another view
+  for (int k = 0; k < 40; ++k)
+    if (k % 3 != 0) {
+      EXPECT_TRUE(std::isnan(stride.errorPx[static_cast<std::size_t>(k)])) << k;
+    }
 }
 
 TEST(GroundTruthBenchmark, OptionsCheckNamesTheBadOption) {
@@ -106,6 +298,11 @@ TEST(GroundTruthBenchmark, OptionsCheckNamesTheBadOption) {
   bad = o;
   bad.passes = 0;
   EXPECT_NE(message(bad).find("--passes"), std::string::npos);
+  bad = o;
+  bad.orders = {"sequence", "cuts:1"};
+  EXPECT_NE(message(bad).find("--order: 'cuts:1'"), std::string::npos);
+  bad.orders = {};
+  EXPECT_NE(message(bad).find("--order names no order"), std::string::npos);
 }
 
 // A reference frame needs a true pose, and must be in the sequence: checked before the map.
@@ -171,13 +368,16 @@ TEST(GroundTruthBenchmark, SimulatedClipErrorsOfReftrackAndAPeer) {
   EXPECT_EQ(r.modelPoints[0].first, "AKAZE+PnP");
   EXPECT_GT(r.modelPoints[0].second, 50);
   ASSERT_EQ(r.runs.size(), 4u);
-  const std::vector<std::pair<std::string, bool>> expected = {
-      {"reftrack", false}, {"reftrack", true}, {"AKAZE+PnP", false}, {"AKAZE+PnP", true}};
+  const std::vector<std::pair<std::string, std::string>> expected = {{"reftrack", "sequence"},
+                                                                     {"reftrack", "shuffled"},
+                                                                     {"AKAZE+PnP", "sequence"},
+                                                                     {"AKAZE+PnP", "shuffled"}};
   const std::vector<Eigen::Vector3d> cube = cubeOn(Eigen::Vector3d::Zero(), 0.1);
   for (std::size_t i = 0; i < r.runs.size(); ++i) {
     const MethodRun& run = r.runs[i];
     EXPECT_EQ(run.method, expected[i].first);
-    EXPECT_EQ(run.shuffled, expected[i].second);
+    EXPECT_EQ(run.order.name, expected[i].second);
+    const bool shuffled = run.order.kind == FrameOrderKind::Shuffled;
     ASSERT_EQ(run.errorPx.size(), 30u);
     EXPECT_EQ(run.cpuMs.size(), 30u);  // one pass
     int noPose = 0;
@@ -191,14 +391,14 @@ TEST(GroundTruthBenchmark, SimulatedClipErrorsOfReftrackAndAPeer) {
       EXPECT_NEAR(run.errorPx[k], cubeErrorPx(s.camera, cube, *s.truth[k], *run.poses[k]), 1e-12);
     }
     std::printf("%s %s: %d/%d posed, cube error mean %.3f, p95 %.3f, max %.3f px\n",
-                run.method.c_str(), run.shuffled ? "shuffled" : "sequence", sum.posed, sum.frames,
-                sum.meanPx, sum.p95Px, sum.maxPx);
-    if (!run.shuffled) {
+                run.method.c_str(), run.order.name.c_str(), sum.posed, sum.frames, sum.meanPx,
+                sum.p95Px, sum.maxPx);
+    if (!shuffled) {
       EXPECT_EQ(sum.posed, 30) << run.method;
     }
     if (sum.posed == 0) continue;
-    EXPECT_LT(sum.meanPx, 0.5) << run.method << (run.shuffled ? " shuffled" : "");
-    EXPECT_LT(sum.maxPx, 1.5) << run.method << (run.shuffled ? " shuffled" : "");
+    EXPECT_LT(sum.meanPx, 0.5) << run.method << " " << run.order.name;
+    EXPECT_LT(sum.maxPx, 1.5) << run.method << " " << run.order.name;
     EXPECT_EQ(sum.wrong, 0);
   }
   // The peer keeps nothing between frames: the same pose for a frame in either order.
