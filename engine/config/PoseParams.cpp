@@ -27,6 +27,10 @@ void PoseParams::fields(Self& p, const Field& field) {
   field("estimate_rolling_shutter", p.estimateRollingShutter);
   field("map_point_sd_scale", p.mapPointSdScale, Range{0.0, 100.0});
   field("reliability_prior_observations", p.reliabilityPriorObservations, Range{0.0, 1e6});
+  field("verify_min_points", p.verifyMinPoints, Range{0, 100000});
+  field("verify_min_share", p.verifyMinShare, Range{0.0, 1.0});
+  field("verify_unsure_points", p.verifyUnsurePoints, Range{0, 100000});
+  field("verify_unsure_share", p.verifyUnsureShare, Range{0.0, 1.0});
 }
 
 template struct ParamSection<PoseParams>;

@@ -54,6 +54,19 @@ struct PoseParams : ParamSection<PoseParams> {
   // the real desk clip and the simulator (README "Defaults decided on real footage"): cube error
   // mean over four reference pairs 0.386 -> 0.294 px, simulator webcam preset 0.129 -> 0.105 px.
   double reliabilityPriorObservations = 2.0;
+  // Every pose is checked before it is reported, whatever produced it (PoseVerifier): at the
+  // distinctive map points it projects into the frame, the reference windows warped by the pose
+  // must correlate with the frame. It needs this many of them confirmed (0 turns the check off)
+  // and this share of those it could check. A pose short of that is confirmed by the map's
+  // keypoint layer when there is one (relocalisation.min_keypoint_support / agreement of the
+  // frame's ratio-test keypoint matches agree with it), else it is `lost` with the reason, and the
+  // same frame goes on to the start near a reference and the relocaliser.
+  int verifyMinPoints = 8;
+  double verifyMinShare = 0.2;
+  // Short of those but with at least these, the pose is unsure rather than refuted: it is kept
+  // when the relocaliser, asked on the same frame, finds no pose or agrees with it.
+  int verifyUnsurePoints = 4;
+  double verifyUnsureShare = 0.12;
 
   template <class Self, class Field>  // its keys, in order: ParamFields.hpp
   static void fields(Self& self, const Field& field);

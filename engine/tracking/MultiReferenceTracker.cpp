@@ -155,8 +155,55 @@ struct MultiReferenceTracker::Impl {
     if (motionModel) tracker->setMotionModel(*motionModel);
     if (varianceModel) tracker->setCornerVarianceModel(*varianceModel);
     tracker->shareRollingShutterEstimator(shutter);
+    tracker->setVerificationKeypoints(verificationKeypoints(pair.a), verificationKeypoints(pair.b));
+    tracker->setPoseConfirmation([this](const cv::Mat& frame, const RigidPose& pose, bool unsure) {
+      return secondOpinion(frame, pose, unsure);
+    });
     cache.push_back({pair, std::move(tracker), frameCount});
     return *cache.back().tracker;
+  }
+
+  // The second opinion on a pose its check did not confirm (PoseTracker::setPoseConfirmation).
+  // A relocalisation's pose is accepted when it keeps relocalisation.min_inliers of its
+  // candidate's ratio-test inliers (keypoints matched over whole references: no look-alikes). Any
+  // other pose (tracked on, re-seeded, started near a reference) that the check found unsure is
+  // put to the relocaliser on the same frame: kept when it finds no pose or one that keeps those
+  // inliers; refused when it finds another (which the same frame then goes on to). A refuted pose
+  // is refused.
+  const RelocalisationCandidate* confirmingCandidate = nullptr;
+  std::optional<RelocalisationAttempt> locatedThisFrame;  // the relocaliser's one run per frame
+  const RelocalisationAttempt& locateOnce(const cv::Mat& frame) {
+    if (!locatedThisFrame) locatedThisFrame = relocaliser->locate(frame);
+    return *locatedThisFrame;
+  }
+  std::optional<std::string> keepsInliersOf(const RelocalisationCandidate& c,
+                                            const RigidPose& pose) const {
+    const int kept = relocaliser->agreeing(pose, c.distinctivePoints, c.distinctivePixels);
+    if (kept >= params.relocalisation.minInliers) return std::nullopt;
+    return std::to_string(kept) + " of the relocaliser's " +
+           std::to_string(c.distinctivePoints.size()) + " ratio-test inliers agree with it, " +
+           std::to_string(params.relocalisation.minInliers) +
+           " needed (relocalisation.min_inliers)";
+  }
+  std::optional<std::string> secondOpinion(const cv::Mat& frame, const RigidPose& pose,
+                                           bool unsure) {
+    if (confirmingCandidate) return keepsInliersOf(*confirmingCandidate, pose);
+    if (!unsure) return std::string("refuted");
+    if (!relocaliser) return std::string("no relocaliser to ask (the map has no keypoint layer)");
+    const RelocalisationAttempt& a = locateOnce(frame);
+    if (!a.candidate) return std::nullopt;
+    if (std::optional<std::string> refused = keepsInliersOf(*a.candidate, pose))
+      return "the relocaliser places the camera elsewhere: " + *refused;
+    return std::nullopt;
+  }
+
+  // A reference's keypoints with a 3D point, for the check of every pose (PoseVerifier).
+  std::vector<PoseTracker::VerificationKeypoint> verificationKeypoints(int view) const {
+    std::vector<PoseTracker::VerificationKeypoint> out;
+    const ReferenceKeypoints& layer = map.views[static_cast<std::size_t>(view)].keypoints;
+    for (std::size_t i = 0; i < layer.keypoints.size() && i < layer.points.size(); ++i)
+      if (layer.points[i].allFinite()) out.push_back({layer.points[i], layer.keypoints[i].pt});
+    return out;
   }
 
   void resetIfCached(ReferencePair pair) {
@@ -178,7 +225,7 @@ struct MultiReferenceTracker::Impl {
   MultiReferenceResult process(const cv::Mat& frame);
   MultiReferenceResult track(const cv::Mat& frame, FrameAttempts& attempts, ReferencePair& used);
   PoseTrackingResult recover(const cv::Mat& frame, FrameAttempts& attempts, ReferencePair& used,
-                             RelocalisationReport& relocalisation);
+                             RelocalisationReport& relocalisation, bool afterJump = false);
   PoseTrackingResult startNearReference(const cv::Mat& frame, ReferencePair& used);
   PoseTrackingResult relocalise(const cv::Mat& frame, ReferencePair& used,
                                 RelocalisationReport& relocalisation);
@@ -195,11 +242,21 @@ MultiReferenceResult MultiReferenceTracker::Impl::process(const cv::Mat& frame) 
                 std::to_string(map.camera.imageSize().width) + "x" +
                 std::to_string(map.camera.imageSize().height));
   ++frameCount;
+  locatedThisFrame.reset();
   FrameAttempts attempts;
   ReferencePair used;
   MultiReferenceResult out;
   if (state == TrackingState::Tracking && active.valid() && lastPose) {
     out = track(frame, attempts, used);
+    if (out.tracking.state != TrackingState::Tracking) {
+      // Lost from the last pose: the same frame goes on to the recovery (the start near a
+      // reference, the relocaliser), so a cut to a findable view costs no frame. When the pose's
+      // own check refused it (PoseVerifier), the view changed abruptly (a cut, dropped frames, a
+      // covered lens) and the last pose is no use: no re-seed from it.
+      attempts.failed("tracking", out.tracking);
+      out.tracking =
+          recover(frame, attempts, used, out.relocalisation, out.tracking.verificationFailed);
+    }
   } else {
     out.tracking = recover(frame, attempts, used, out.relocalisation);
   }
@@ -261,8 +318,10 @@ MultiReferenceResult MultiReferenceTracker::Impl::track(const cv::Mat& frame,
 PoseTrackingResult MultiReferenceTracker::Impl::recover(const cv::Mat& frame,
                                                         FrameAttempts& attempts,
                                                         ReferencePair& used,
-                                                        RelocalisationReport& relocalisation) {
-  if (lastPose && active.valid() && framesSinceTracked <= params.references.reseedFrames) {
+                                                        RelocalisationReport& relocalisation,
+                                                        bool afterJump) {
+  if (!afterJump && lastPose && active.valid() &&
+      framesSinceTracked <= params.references.reseedFrames) {
     PoseTracker& t = trackerFor(active);
     t.seed(*lastPose);
     PoseTrackingResult r = t.process(frame);
@@ -273,11 +332,14 @@ PoseTrackingResult MultiReferenceTracker::Impl::recover(const cv::Mat& frame,
     }
     attempts.failed("re-seed", r);
     t.reset();
+    // Refused by its check: the camera is elsewhere, so the relocaliser is due at once.
+    afterJump = r.verificationFailed;
   }
   PoseTrackingResult start = startNearReference(frame, used);
   if (start.state == TrackingState::Tracking) return start;
   const bool due =
-      relocaliser && ++framesSinceRelocalisation >= params.relocalisation.attemptEveryFrames;
+      relocaliser &&
+      (++framesSinceRelocalisation >= params.relocalisation.attemptEveryFrames || afterJump);
   if (!due) return start;
   attempts.failed("start near references " + std::to_string(used.a) + "+" + std::to_string(used.b),
                   start);
@@ -382,7 +444,7 @@ PoseTrackingResult MultiReferenceTracker::Impl::relocalise(const cv::Mat& frame,
   ++relocalisationAttempts;
   const Clock::time_point start = Clock::now();
   const double cpuStart = threadCpuMs();
-  const RelocalisationAttempt attempt = relocaliser->locate(frame);
+  const RelocalisationAttempt attempt = locateOnce(frame);
   relocalisation.attempted = true;
   relocalisation.locateMs = attempt.ms;
   relocalisation.locateCpuMs = attempt.cpuMs;
@@ -392,7 +454,9 @@ PoseTrackingResult MultiReferenceTracker::Impl::relocalise(const cv::Mat& frame,
     const ReferencePair pair = selector.best(attempt.candidate->worldToCamera);
     PoseTracker& t = trackerFor(pair);
     t.seed(attempt.candidate->worldToCamera);
+    confirmingCandidate = &*attempt.candidate;
     PoseTrackingResult r = t.process(frame);
+    confirmingCandidate = nullptr;
     used = pair;
     relocalisation.ms = msSince(start);
     relocalisation.cpuMs = threadCpuMs() - cpuStart;

@@ -22,6 +22,7 @@
 #include "engine/matching/PatchAligner.hpp"
 #include "engine/tracking/MeasurementReliability.hpp"
 #include "engine/tracking/PoseSupport.hpp"
+#include "engine/tracking/PoseVerifier.hpp"
 #include "engine/tracking/WideBaselineMatcher.hpp"
 
 namespace reftrack {
@@ -209,6 +210,9 @@ struct PoseTracker::Impl {
   }
 
   std::vector<char> distinctiveA, distinctiveB;  // per reference corner (DistinctiveCorners)
+  std::unique_ptr<PoseVerifier> verifier;        // the check of every pose (pose.verify_*)
+  std::vector<PoseTracker::VerificationKeypoint> verificationKeypoints[2];  // in A, in B
+  PoseTracker::PoseConfirmation confirmation;  // a second opinion when the check says no
   // Repeated texture within reach of a start's search (the narrow-baseline window, the seed
   // search) can fool a start by a whole period; a look-alike correlating above the matcher's
   // acceptance there makes a corner repeated. Not the whole image: generic corners (an L, a
@@ -226,6 +230,53 @@ struct PoseTracker::Impl {
     const double twin = params.correlation.minScore;
     distinctiveA = distinctiveCorners(refA.gray, refA.matchable.corners, half, radius, twin);
     distinctiveB = distinctiveCorners(refB.gray, refB.matchable.corners, half, radius, twin);
+    buildVerifier(radius);
+  }
+
+  // The verifier reads the map points where the references measured them, each flagged with its
+  // corner's distinctiveness in that reference, and the references' keypoints with a 3D point
+  // (setVerificationKeypoints), flagged alike.
+  void buildVerifier(double radius) {
+    std::vector<Eigen::Vector3d> points;
+    VerifiedReference a, b;
+    a.gray8 = refA.matchable.gray8;
+    b.gray8 = refB.matchable.gray8;
+    for (const ReferenceMatch& m : map.matches) {
+      const auto ca = static_cast<std::size_t>(m.cornerA), cb = static_cast<std::size_t>(m.cornerB);
+      points.push_back(m.pointA);
+      a.pixels.push_back(refA.measuredPixels[ca]);
+      a.distinctive.push_back(distinctiveA[ca]);
+      b.pixels.push_back(refB.measuredPixels[cb]);
+      b.distinctive.push_back(distinctiveB[cb]);
+    }
+    const cv::Point2f none(NAN, NAN);
+    for (int r = 0; r < 2; ++r) {
+      VerifiedReference& seen = r == 0 ? a : b;
+      VerifiedReference& other = r == 0 ? b : a;
+      std::vector<cv::Point2f> pixels;
+      for (const PoseTracker::VerificationKeypoint& k : verificationKeypoints[r]) {
+        points.push_back(map.T_A * k.world);
+        pixels.push_back(k.pixel);
+        seen.pixels.push_back(k.pixel);
+        other.pixels.push_back(none);
+        other.distinctive.push_back(0);
+      }
+      const std::vector<char> distinctive = distinctiveCorners(
+          seen.gray8, pixels, params.correlation.halfWindow, radius, params.correlation.minScore);
+      seen.distinctive.insert(seen.distinctive.end(), distinctive.begin(), distinctive.end());
+    }
+    verifier = std::make_unique<PoseVerifier>(map.camera, std::move(points), map.T_AB(),
+                                              std::move(a), std::move(b), verifierParams());
+  }
+  PoseVerifierParams verifierParams() const {
+    PoseVerifierParams p;
+    p.halfWindow = params.wideBaseline.halfWindow;
+    p.minScore = params.wideBaseline.minScore;
+    p.minConfirmed = params.pose.verifyMinPoints;
+    p.minConfirmedShare = params.pose.verifyMinShare;
+    p.minUnsure = params.pose.verifyUnsurePoints;
+    p.minUnsureShare = params.pose.verifyUnsureShare;
+    return p;
   }
 
   // Each map point's covariance (camera A's frame) from its two-reference triangulation: the
@@ -347,6 +398,7 @@ struct PoseTracker::Impl {
     std::vector<WideBaselineMatch> toA, toB;  // frame corner -> reference corner
     cv::Matx33d H = cv::Matx33d::eye();       // V_k -> V_{k-1} (identity unless measured)
     bool haveFrameToFrame = false;
+    int frameToFrameMatches = 0, frameToFrameInliers = 0;
   };
   struct Measurements {
     std::vector<Eigen::Vector2d> undistorted;      // corrected, undistorted frame pixels
@@ -371,6 +423,8 @@ struct PoseTracker::Impl {
   void matchFrameToFrame(const FrameCorners& c, double scale, FrameMatches& m);
   void matchWideBaseline(const cv::Mat& gray, const FrameCorners& c, bool seeded, FrameMatches& m,
                          PoseTrackingResult& r);
+  bool verifyPose(const cv::Mat& frame, const cv::Mat& gray, const RigidPose& TAk,
+                  PoseTrackingResult& r);
   void matchInitial(const cv::Mat& gray, const FrameCorners& c, FrameMatches& m);
   void completeThroughMap(std::size_t frameCorners, FrameMatches& m) const;
   Measurements measure(const cv::Mat& gray, const FrameCorners& c, const FrameMatches& m);
@@ -418,10 +472,13 @@ void PoseTracker::Impl::matchFrameToFrame(const FrameCorners& c, double scale, F
     a.push_back(c.f2fPoints[static_cast<std::size_t>(x.first)]);
     b.push_back(prevF2F[static_cast<std::size_t>(x.second)]);
   }
-  const cv::Mat Hm = cv::findHomography(a, b, cv::RANSAC, 3.0 * scale);
+  std::vector<uchar> inlier;
+  const cv::Mat Hm = cv::findHomography(a, b, cv::RANSAC, 3.0 * scale, inlier);
   if (Hm.empty()) return;
   m.H = cv::Matx33d(Hm);
   m.haveFrameToFrame = true;
+  m.frameToFrameMatches = static_cast<int>(f2f.size());
+  m.frameToFrameInliers = static_cast<int>(std::count(inlier.begin(), inlier.end(), 1));
 }
 
 // Stage 3a, wide-baseline matching (tracked or seeded frames): the frame's corners to V_A and
@@ -758,6 +815,35 @@ bool PoseTracker::Impl::checkSupport(const PoseEstimate& est, const PoseMeasurem
   return true;
 }
 
+// Stage 9b, verification: the pose's own projections of the distinctive map points must be
+// confirmed by the frame (PoseVerifier); the matches that produced it are not consulted. False
+// (with the reason in r) otherwise.
+bool PoseTracker::Impl::verifyPose(const cv::Mat& frame, const cv::Mat& gray, const RigidPose& TAk,
+                                   PoseTrackingResult& r) {
+  if (params.pose.verifyMinPoints <= 0) return true;
+  Clock::time_point t = Clock::now();
+  const PoseCheck check = verifier->check(gray, TAk);
+  r.verifyCheckable = check.checkable;
+  r.verifyConfirmed = check.confirmed;
+  r.timings.push_back({"verify", msSince(t)});
+  if (check.passed()) return true;
+  std::string why = check.reason;
+  if (confirmation) {
+    t = Clock::now();
+    const std::optional<std::string> refused =
+        confirmation(frame, TAk * map.T_A, check.verdict == PoseCheck::Verdict::Unsure);
+    r.timings.push_back({"confirm", msSince(t)});
+    if (!refused) {
+      r.confirmedBySecondOpinion = true;
+      return true;
+    }
+    why += "; " + *refused;
+  }
+  lose(r, why);
+  r.verificationFailed = true;
+  return false;
+}
+
 // Stage 10, seeds for the next frame: the inlier matches (and the debug primitives).
 void PoseTracker::Impl::keepInliers(const FrameCorners& c, const FrameMatches& m, const Inliers& in,
                                     PoseTrackingResult& r) {
@@ -864,6 +950,8 @@ PoseTrackingResult PoseTracker::Impl::process(const cv::Mat& frame) {
     r.timings.push_back({"initialise", msSince(t)});
   }
   completeThroughMap(corners.pixels.size(), matches);
+  r.frameToFrameMatches = matches.frameToFrameMatches;
+  r.frameToFrameInliers = matches.frameToFrameInliers;
   r.matchesA = static_cast<int>(matches.toA.size());
   r.matchesB = static_cast<int>(matches.toB.size());
 
@@ -894,6 +982,9 @@ PoseTrackingResult PoseTracker::Impl::process(const cv::Mat& frame) {
   // 9. Support.
   if (!checkSupport(*est, inliers->measurements, scale, r)) return finish(r);
   const RigidPose TAk = RigidPose::fromVector6(est->x);
+
+  // 9b. The pose itself checked against the references (PoseVerifier), whatever produced it.
+  if (!verifyPose(frame, gray, TAk, r)) return finish(r);
   r.message = seeded        ? "tracking from a seeded pose"
               : wasTracking ? "tracking"
                             : "initialised from the reference images";
@@ -934,7 +1025,7 @@ void PoseTracker::setParams(const TrackerParams& params) {
   impl_->params = params;
   impl_->applyCornerParams();
   impl_->applyPoseParams();
-  impl_->computeDistinctiveCorners();
+  impl_->computeDistinctiveCorners();  // and the verifier with its parameters
   impl_->computePointCovariances();
   impl_->pointReliability.setPriorObservations(params.pose.reliabilityPriorObservations);
   impl_->cornerReliability.setPriorObservations(params.pose.reliabilityPriorObservations);
@@ -966,6 +1057,15 @@ void PoseTracker::reset() {
   impl_->prevA.clear();
   impl_->prevB.clear();
   impl_->pendingReliability.clear();
+}
+void PoseTracker::setVerificationKeypoints(std::vector<VerificationKeypoint> inA,
+                                           std::vector<VerificationKeypoint> inB) {
+  impl_->verificationKeypoints[0] = std::move(inA);
+  impl_->verificationKeypoints[1] = std::move(inB);
+  impl_->computeDistinctiveCorners();
+}
+void PoseTracker::setPoseConfirmation(PoseConfirmation confirmation) {
+  impl_->confirmation = std::move(confirmation);
 }
 void PoseTracker::shareRollingShutterEstimator(std::shared_ptr<RollingShutterEstimator> shared) {
   if (!shared) throw Error("PoseTracker::shareRollingShutterEstimator: null estimator");

@@ -10,6 +10,7 @@
 // without enough inlier support (count, residual RMS, covariance and PoseSupport's reprojection SD,
 // which rejects black, textureless and heavily blurred frames): the frame is `Lost` instead, with
 // the reason.
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -58,6 +59,12 @@ struct PoseTrackingResult {
   double rollingShutterReadout = 0.0;      // the readout this frame was corrected with
   int corners = 0, matchesA = 0, matchesB = 0, threeView = 0, inliers = 0;
   int distinctiveInliers = 0;  // inliers on distinctive structure (DistinctiveCorners)
+  // The check of the pose (PoseVerifier): distinctive map points it projects into the frame, and
+  // how many of them the frame confirmed; verificationFailed: the frame is lost by that check.
+  int verifyCheckable = 0, verifyConfirmed = 0;
+  int frameToFrameMatches = 0, frameToFrameInliers = 0;  // the homography V_k -> V_k-1 (tracking)
+  bool confirmedBySecondOpinion = false;  // the check fell short; the second opinion accepted it
+  bool verificationFailed = false;
   std::vector<StageTiming> timings;
   double totalMs = 0.0;
   // Debug primitives in frame pixels: corners and inlier matches (frame pixel, reference pixel).
@@ -88,6 +95,21 @@ class PoseTracker {
   void seed(const RigidPose& worldToCamera);
   // The rolling-shutter readout in use (pose.rolling_shutter_readout, or its online estimate).
   double rollingShutterReadout() const;
+  // A second opinion on a pose that its check (PoseVerifier) did not confirm: given the frame, the
+  // pose (world -> camera) and whether the check was unsure (else it refuted the pose), nullopt
+  // accepts it, else the reason to refuse it. Without one such a pose is refused
+  // (MultiReferenceTracker asks its relocaliser).
+  using PoseConfirmation = std::function<std::optional<std::string>(
+      const cv::Mat& frame, const RigidPose& pose, bool unsure)>;
+  void setPoseConfirmation(PoseConfirmation confirmation);
+  // More scene points for the check of every pose than the map's corner points: the references'
+  // keypoints with a 3D point (world frame; pixels as detected in A, resp. B).
+  struct VerificationKeypoint {
+    Eigen::Vector3d world;
+    cv::Point2f pixel;
+  };
+  void setVerificationKeypoints(std::vector<VerificationKeypoint> inA,
+                                std::vector<VerificationKeypoint> inB);
   // Trackers of one camera share their readout estimate (MultiReferenceTracker's pair trackers).
   void shareRollingShutterEstimator(std::shared_ptr<RollingShutterEstimator> shared);
   const ReferenceMap& map() const;
