@@ -27,6 +27,8 @@ void PoseParams::fields(Self& p, const Field& field) {
   field("estimate_rolling_shutter", p.estimateRollingShutter);
   field("map_point_sd_scale", p.mapPointSdScale, Range{0.0, 100.0});
   field("reliability_prior_observations", p.reliabilityPriorObservations, Range{0.0, 1e6});
+  field("predicted_error_scale", p.predictedErrorScale, Range{1e-6, 1e6});
+  field("max_predicted_error_px", p.maxPredictedErrorPx, Range{0.0, 1e6});
 }
 
 template struct ParamSection<PoseParams>;
