@@ -57,6 +57,11 @@ struct MethodRun {
   std::vector<std::optional<RigidPose>> poses;  // per frame index, first pass: world->camera
   std::vector<double> cpuMs;                    // every processed frame, every pass
   std::map<std::string, int> noPose;  // reason -> frames with a true pose but none estimated
+  // reftrack only (NaN elsewhere), per frame index, first pass: the cube error its covariance
+  // predicts (MultiReferenceResult::predictedErrorPx for the scoring cube), and whether the frame
+  // was reported uncertain (pose.max_predicted_error_px).
+  std::vector<double> predictedErrorPx;
+  std::vector<bool> uncertain;
 };
 
 struct MethodSummary {
@@ -73,6 +78,18 @@ struct MethodSummary {
 
 // `truth[k]`: frame k has a true pose (frames without one are not scored).
 MethodSummary summarise(const MethodRun& run, const std::vector<bool>& truth);
+
+// Calibration of the predicted error (issue 32) over the posed frames with a true pose and a
+// prediction: true / predicted cube error per frame, and the predictions themselves.
+struct PredictionSummary {
+  int frames = 0;  // posed frames with a finite true error and a prediction
+  double ratioMedian = NAN, ratioP25 = NAN, ratioP75 = NAN;  // true / predicted
+  double predictedMedianPx = NAN, predictedP95Px = NAN, predictedMaxPx = NAN;
+  int uncertain = 0;                 // frames reported uncertain
+  double uncertainTrueMeanPx = NAN;  // ... their mean true error
+  int wrongNotUncertain = 0;         // posed frames > kWrongPosePx off not reported uncertain
+};
+PredictionSummary summarisePrediction(const MethodRun& run, const std::vector<bool>& truth);
 
 struct GroundTruthBenchmarkResult {
   std::string framesDescription, groundTruthDescription;

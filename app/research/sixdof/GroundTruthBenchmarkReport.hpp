@@ -2,7 +2,9 @@
 // What `bench-real --input` shows and writes of a GroundTruthBenchmarkResult: the table (the
 // recording, references, map and peer model sizes, then one row per method and order: coverage,
 // mean / p95 / max cube error, poses more than 5 px off and within 1.5 px, median thread CPU per
-// frame and its ratio to reftrack's in the same order, then why frames got no pose), a CSV of
+// frame and its ratio to reftrack's in the same order, then reftrack's predicted cube error and
+// its calibration: true / predicted, and the frames reported uncertain; then why frames got no
+// pose), a CSV of
 // every frame's cube error per method and order, and a PNG of the sequence-order errors per frame.
 #include <filesystem>
 #include <string>
@@ -17,8 +19,9 @@ inline constexpr double kPlotErrorCapPx = 10.0;
 
 std::string groundTruthBenchmarkTable(const GroundTruthBenchmarkResult& result);
 
-// Header `frame,true_pose,<method>_<order>_px...`; one row per frame; an empty cell: no pose;
-// inf: the pose put the whole cube behind the camera.
+// Header `frame,true_pose,<method>_<order>_px...`, then `<method>_<order>_predicted_px` for the
+// runs with a predicted error (reftrack); one row per frame; an empty cell: no pose (or no
+// prediction); inf: the pose put the whole cube behind the camera.
 void writeGroundTruthBenchmarkCsv(const GroundTruthBenchmarkResult& result,
                                   const std::filesystem::path& csv);
 void writeGroundTruthBenchmarkPlot(const GroundTruthBenchmarkResult& result,
