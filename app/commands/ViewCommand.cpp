@@ -75,7 +75,10 @@ CommandRegistration registerViewCommand(CLI::App& parent) {
       "when --camera is not given); dataset frames keep their timestamps.\n"
       "Poses come from the 6-DOF tracker (--map), the homography tracker (--reference), or a\n"
       "replayed trajectory (--poses, TUM camera in world); sim: inputs without them replay\n"
-      "their ground truth. Recording writes OUT.mp4 (one frame per processed frame, at\n"
+      "their ground truth. With a live tracker the Stats panel plots the overlay error the\n"
+      "pose covariance predicts, and beside it the true one when the frames' poses are known\n"
+      "(--gt TUM file; sim: inputs bring their own).\n"
+      "Recording writes OUT.mp4 (one frame per processed frame, at\n"
       "the source frame rate) and OUT_trajectory.txt (TUM) beside it.\n"
       "--calibrate BOARD opens the Calibration panel (capture views, coverage, calibrate, save\n"
       "camera.yml, use it for tracking); --camera is then optional. Headless, every frame is\n"
@@ -84,6 +87,10 @@ CommandRegistration registerViewCommand(CLI::App& parent) {
   sub->add_option("--camera", o.camera, "camera.yml (required unless SRC is sim: or euroc:)")
       ->check(CLI::ExistingFile);
   sub->add_option("--poses", o.poses, "TUM trajectory to replay as the poses")
+      ->check(CLI::ExistingFile);
+  sub->add_option("--gt", o.groundTruth,
+                  "TUM ground truth of the frames: with --map, the Stats panel plots the "
+                  "overlay's true error beside the predicted one")
       ->check(CLI::ExistingFile);
   sub->add_option("--params", o.params, "Parameter YAML (TrackerParams + overlay section)")
       ->check(CLI::ExistingFile);
@@ -170,6 +177,14 @@ CommandRegistration registerViewCommand(CLI::App& parent) {
               std::cout << "recorded " << s.recording.string() << " and " << s.trajectory.string()
                         << "\n";
             if (!s.screenshot.empty()) std::cout << "screenshot " << s.screenshot.string() << "\n";
+            if (s.predictedErrorFrames > 0)
+              std::printf("overlay error of the cube: predicted mean %.3f px over %d frames\n",
+                          s.predictedErrorMeanPx, s.predictedErrorFrames);
+            if (s.trueErrorFrames > 0)
+              std::printf(
+                  "overlay error of the cube: true mean %.3f px over %d frames (ground "
+                  "truth)\n",
+                  s.trueErrorMeanPx, s.trueErrorFrames);
             if (s.soak) printSoakSummary(std::cout, *s.soak);
             if (!options.calibrateBoard.empty() && options.headless) {
               std::printf("calibration: %d views captured, %d rejected\n", s.calibrationCaptured,

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "FrameArray.hpp"
 #include "TrackerParamsArgument.hpp"
@@ -50,7 +51,9 @@ PYBIND11_MODULE(reftrack, m) {
   py::class_<Result>(m, "Result", "What Tracker.track found in one frame.")
       .def_property_readonly(
           "state", [](const Result& r) { return reftrack::toString(r.state); },
-          "'initialising' (no pose since open or reset), 'tracking' or 'lost'")
+          "'initialising' (no pose since open or reset), 'tracking', 'lost' or 'uncertain' "
+          "(tracked, but predicted_error_px exceeds pose.max_predicted_error_px: the pose is "
+          "given, not to be drawn as if exact)")
       .def_readonly("reason", &Result::reason,
                     "why not tracking; while tracking, how the pose was found, if notable")
       .def_readonly("frame_index", &Result::frameIndex, "0 for the first frame after open/reset")
@@ -68,6 +71,9 @@ PYBIND11_MODULE(reftrack, m) {
             return r.covariance;
           },
           "6x6 covariance of (t, r) of world_to_camera (metres, radians; r axis-angle), or None")
+      .def_readonly("predicted_error_px", &Result::predictedErrorPx,
+                    "6-DOF, with a pose: the overlay error in pixels the covariance predicts for "
+                    "the overlay points (Tracker.set_overlay_points), else None")
       .def_property_readonly("homography", &homographyOf,
                              "3x3 reference pixel -> frame pixel (homography mode), or None")
       .def_readonly("inliers", &Result::inliers, "matches supporting the result")
@@ -115,6 +121,17 @@ PYBIND11_MODULE(reftrack, m) {
           "Tracks the next frame: a uint8 numpy image of the map's size, HxW grey or HxWx3 BGR "
           "(read in place, not copied, when its rows are contiguous).")
       .def("reset", &Tracker::reset, "Forget the past: the next frame is tracked as a first one.")
+      .def(
+          "set_overlay_points",
+          [](Tracker& tracker, const Eigen::Matrix<double, Eigen::Dynamic, 3>& points) {
+            std::vector<Eigen::Vector3d> world;
+            for (Eigen::Index i = 0; i < points.rows(); ++i) world.emplace_back(points.row(i));
+            tracker.setOverlayPoints(world);
+          },
+          py::arg("points"),
+          "6-DOF: the drawn object's points (Nx3, world frame, metres) whose overlay error "
+          "Result.predicted_error_px predicts; an empty (0x3) array restores the default (the "
+          "corners of the box holding the central part of the map's points).")
       .def_property_readonly("mode",
                              [](const Tracker& t) {
                                return t.mode() == Tracker::Mode::SixDof ? "6dof" : "homography";

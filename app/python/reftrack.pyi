@@ -17,7 +17,8 @@ class Result:
     """What Tracker.track found in one frame."""
 
     @property
-    def state(self) -> Literal["initialising", "tracking", "lost"]: ...
+    def state(self) -> Literal["initialising", "tracking", "lost", "uncertain"]:
+        """'uncertain': tracked, but predicted_error_px > pose.max_predicted_error_px."""
     @property
     def reason(self) -> str: ...
     @property
@@ -28,6 +29,9 @@ class Result:
     @property
     def covariance(self) -> Optional[npt.NDArray[np.float64]]:
         """6x6 covariance of (t, r) of world_to_camera (metres, radians)."""
+    @property
+    def predicted_error_px(self) -> Optional[float]:
+        """Overlay error (px) the covariance predicts for the overlay points; None without a pose."""
     @property
     def homography(self) -> Optional[npt.NDArray[np.float64]]:
         """3x3 reference pixel -> frame pixel (homography mode)."""
@@ -56,6 +60,8 @@ class Tracker:
     def track(self, frame: npt.NDArray[np.uint8]) -> Result:
         """A uint8 image of the map's size, HxW grey or HxWx3 BGR."""
     def reset(self) -> None: ...
+    def set_overlay_points(self, points: npt.ArrayLike) -> None:
+        """Nx3 world points of the drawn object (6-DOF); 0x3 restores the default."""
     @property
     def mode(self) -> Literal["6dof", "homography"]: ...
     @property

@@ -43,7 +43,7 @@ std::string csvHeader() {
     std::replace(name.begin(), name.end(), '-', '_');
     h += ",ms_" + name;
   }
-  return h + ",message\n";
+  return h + ",predicted_error_px,message\n";
 }
 
 }  // namespace
@@ -64,6 +64,7 @@ int runSixDofTrack(const SixDofTrackOptions& o) {
   std::unique_ptr<VideoRecorder> recorder;
   OverlaySettings overlay;
   overlay.size = o.cubeSize;
+  tracker.setOverlayPoints(overlay.cubeWorldVertices());  // the predicted error is the cube's
   if (!o.record.empty()) {
     compositor = std::make_unique<OverlayCompositor>();
     recorder =
@@ -75,6 +76,8 @@ int runSixDofTrack(const SixDofTrackOptions& o) {
   TumTrajectory trajectory;
   ProgressBar progress("track 6dof", static_cast<std::size_t>(input.expectedCount()));
   int processed = 0, tracked = 0, switches = 0, relocAttempts = 0, relocSucceeded = 0;
+  int uncertain = 0;
+  std::vector<double> predicted;                       // of the tracked frames
   double readout = params.pose.rollingShutterReadout;  // the last tracked frame's
   std::pair<int, int> lastPair{-1, -1};
   std::vector<double> ms, relocMs;
@@ -101,7 +104,11 @@ int runSixDofTrack(const SixDofTrackOptions& o) {
       relocSucceeded += multi.relocalisation.succeeded ? 1 : 0;
       relocMs.push_back(multi.relocalisation.ms);
     }
-    csv << frame->index << ',' << std::to_string(frame->timestamp) << ',' << toString(r.state);
+    // Issue 32: a pose whose predicted overlay error exceeds pose.max_predicted_error_px.
+    const char* status = multi.uncertain ? "uncertain" : toString(r.state);
+    uncertain += multi.uncertain ? 1 : 0;
+    if (multi.predictedErrorPx) predicted.push_back(*multi.predictedErrorPx);
+    csv << frame->index << ',' << std::to_string(frame->timestamp) << ',' << status;
     if (r.worldToCamera) {
       ++tracked;
       trajectory.poses.push_back({frame->timestamp, *r.worldToCamera});
@@ -123,7 +130,12 @@ int runSixDofTrack(const SixDofTrackOptions& o) {
       for (const StageTiming& t : r.timings)
         if (t.stage == s) csv << t.ms;
     }
-    csv << ',' << quoted(r.state == TrackingState::Tracking ? "" : r.message) << '\n';
+    csv << ',';
+    if (multi.predictedErrorPx) csv << *multi.predictedErrorPx;
+    const std::string message = multi.uncertain                      ? multi.uncertainReason
+                                : r.state == TrackingState::Tracking ? ""
+                                                                     : r.message;
+    csv << ',' << quoted(message) << '\n';
     if (recorder) {
       const cv::Mat composite =
           compositor->composite(frame->image, map.camera, result, overlay,
@@ -152,6 +164,14 @@ int runSixDofTrack(const SixDofTrackOptions& o) {
   std::printf("6dof: %d frames, %d tracked (%.1f%%), median %.2f ms per frame\n", processed,
               tracked, 100.0 * tracked / processed, ms[ms.size() / 2]);
   std::printf("references: %d in the map, %d pair switches\n", map.size(), switches);
+  if (!predicted.empty()) {
+    std::sort(predicted.begin(), predicted.end());
+    std::printf(
+        "predicted overlay error (cube of %.3f m): median %.2f px, max %.2f px; %d frame(s) "
+        "uncertain (above pose.max_predicted_error_px %g, 0: off)\n",
+        o.cubeSize, predicted[predicted.size() / 2], predicted.back(), uncertain,
+        params.pose.maxPredictedErrorPx);
+  }
   std::printf("rolling-shutter readout: %.3f of the frame interval (%s)\n", readout,
               params.pose.estimateRollingShutter ? "estimated online, pose.estimate_rolling_shutter"
                                                  : "pose.rolling_shutter_readout");

@@ -2,8 +2,11 @@
 // `reftrack track --mode 6dof`: runs the MultiReferenceTracker over a frame source against a
 // prepared reference map (N references, or a two-reference version-1 map) and writes the TUM
 // trajectory of T_k, the per-frame CSV (status and reason, pose, counts, the pair of references
-// in use, the relocalisation attempt, milliseconds per stage) and, optionally, the recorded
-// overlay. Called by TrackCommand for the 6dof mode.
+// in use, the relocalisation attempt, milliseconds per stage, the overlay error the covariance
+// predicts for the recorded cube: predicted_error_px, empty when not tracking) and, optionally,
+// the recorded overlay. A frame above pose.max_predicted_error_px has status `uncertain` and the
+// reason as its message; its pose is written (CSV and trajectory) but the recording draws the
+// cube thin and grey (OverlayCompositor). Called by TrackCommand for the 6dof mode.
 #include <filesystem>
 #include <string>
 

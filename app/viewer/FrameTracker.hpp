@@ -2,6 +2,7 @@
 // FrameTracker: what the viewer loop (window, headless, demo, `track --record`) calls once per
 // frame. Implementations: TrajectoryReplayTracker (poses from a TUM file); the homography and
 // 6-DOF trackers plug in behind the same interface.
+#include <Eigen/Core>
 #include <opencv2/core.hpp>
 #include <optional>
 #include <string>
@@ -43,13 +44,18 @@ struct ReferenceImage {
 struct TrackingResult {
   std::optional<RigidPose> worldToCamera;  // set when a 6-DOF pose is known for the frame
   std::optional<cv::Matx33d> H;            // frame -> reference homography, homography mode
-  std::string status = "initialising";     // "tracking", "lost" or "initialising"
+  std::string status = "initialising";     // "tracking", "uncertain", "lost" or "initialising"
   std::vector<StageTime> stages;           // per-stage milliseconds, in order
   int matches = 0;
   int inliers = 0;
   TrackingDebug debug;
   std::optional<ReferencesFrame> references;    // set by the multi-reference 6-DOF tracker
   std::optional<double> rollingShutterReadout;  // 6-DOF: the readout in use (fixed or estimated)
+  // 6-DOF: the overlay error the pose covariance predicts for the overlay object (pixels), and
+  // whether it exceeds pose.max_predicted_error_px (status "uncertain: ..."; the object is then
+  // not drawn as if exact: OverlayCompositor).
+  std::optional<double> predictedErrorPx;
+  bool uncertain = false;
 };
 
 class FrameTracker {
@@ -61,6 +67,9 @@ class FrameTracker {
   virtual std::string name() const = 0;
   // The reference images of the map it tracks against (empty: no References panel).
   virtual std::vector<ReferenceImage> referenceImages() const { return {}; }
+  // The drawn object's points in the world frame, for the predicted overlay error (6-DOF); the
+  // other trackers predict none and ignore them.
+  virtual void setOverlayPoints(const std::vector<Eigen::Vector3d>& /*worldPoints*/) {}
 };
 
 }  // namespace reftrack::app

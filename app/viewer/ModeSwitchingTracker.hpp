@@ -22,6 +22,10 @@ class ModeSwitchingTracker : public FrameTracker {
   std::vector<ReferenceImage> referenceImages() const override {
     return sixDof_ ? sixDof_->referenceImages() : std::vector<ReferenceImage>{};
   }
+  // Given to the 6-DOF tracker (whichever mode is active).
+  void setOverlayPoints(const std::vector<Eigen::Vector3d>& worldPoints) override {
+    if (sixDof_) sixDof_->setOverlayPoints(worldPoints);
+  }
 
  private:
   FrameTracker& active() const;

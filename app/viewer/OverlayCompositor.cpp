@@ -2,6 +2,7 @@
 
 #include <glad/gl.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "engine/core/Error.hpp"
@@ -15,23 +16,32 @@ const cv::Scalar kMatchColour(80, 255, 80);      // green
 const cv::Scalar kEpipolarColour(255, 160, 60);  // light blue
 const cv::Scalar kLabelColour(255, 255, 255);    // white
 const cv::Scalar kLostLabelColour(80, 80, 255);  // red
+// An uncertain pose (pose.max_predicted_error_px): the cube thin and grey, the label amber.
+const cv::Scalar kUncertainCubeColour(150, 150, 150);
+const cv::Scalar kUncertainLabelColour(0, 190, 255);
 
 }  // namespace
 
 OverlayCompositor::OverlayCompositor() = default;
 OverlayCompositor::~OverlayCompositor() = default;
 
-void OverlayCompositor::drawObject(const render::PinholeView& view,
-                                   const OverlaySettings& settings) {
+void OverlayCompositor::drawObject(const render::PinholeView& view, const OverlaySettings& settings,
+                                   bool uncertain) {
   if (settings.modelPath.empty()) {
     render::WireframeCubeStyle style;
     style.edgeLength = settings.size;
     style.modelToWorld = settings.cubeModelToWorld();
     style.lineWidthPx = settings.lineWidthPx;
     style.vertexDots = settings.vertexDots;
+    if (uncertain) {
+      style.colourBgr = kUncertainCubeColour;
+      style.lineWidthPx = std::max(1.0f, settings.lineWidthPx / 3);
+      style.vertexDots = false;
+    }
     cube_.draw(view, style);
     return;
   }
+  if (uncertain) return;  // a shaded model cannot be dimmed: not drawn at all
   if (!model_ || modelPath_ != settings.modelPath) {
     model_.reset();
     model_ = std::make_unique<render::ObjModel>(settings.modelPath);
@@ -65,7 +75,7 @@ void OverlayCompositor::draw(const cv::Mat& frame, const PinholeCamera& camera,
     view.imageSize = frame.size();
     view.worldToCamera = result.worldToCamera->matrix4();
     view.distortion = camera.distortion();  // the overlay bends as the lens bent the video
-    drawObject(view, settings);
+    drawObject(view, settings, result.uncertain);
   }
 
   annotations_.clear();
@@ -81,7 +91,10 @@ void OverlayCompositor::draw(const cv::Mat& frame, const PinholeCamera& camera,
       annotations_.addDot(c, 1.5f * scale, kCornerColour);
   if (settings.showLabels && !label.empty())
     annotations_.addText({4.0f * scale, 4.0f * scale}, label,
-                         result.status == "lost" ? kLostLabelColour : kLabelColour, scale);
+                         result.uncertain          ? kUncertainLabelColour
+                         : result.status == "lost" ? kLostLabelColour
+                                                   : kLabelColour,
+                         scale);
   if (!annotations_.empty()) annotations_.draw(frame.size());
 }
 

@@ -4,7 +4,10 @@
 // debug layers (corners, matches, epipolar lines) and a status label — into the current render
 // target. Used by the viewer window, headless runs, `demo` and `track --record`. The overlay is
 // projected through the camera's lens distortion, so it lands on the distorted video where the
-// lens puts it (render::PinholeView::distortion). Needs a current GL 3.3 context.
+// lens puts it (render::PinholeView::distortion). An uncertain pose (TrackingResult::uncertain:
+// its predicted overlay error exceeds pose.max_predicted_error_px) is not drawn as if exact: the
+// cube thin, grey and without its vertex dots, an OBJ model not at all, the label amber. Needs a
+// current GL 3.3 context.
 #include <memory>
 #include <opencv2/core.hpp>
 #include <string>
@@ -41,7 +44,7 @@ class OverlayCompositor {
                     const OverlaySettings& settings, const std::string& label = "");
 
  private:
-  void drawObject(const render::PinholeView& view, const OverlaySettings& settings);
+  void drawObject(const render::PinholeView& view, const OverlaySettings& settings, bool uncertain);
 
   render::VideoBackground background_;
   render::WireframeCube cube_;

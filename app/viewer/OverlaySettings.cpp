@@ -11,6 +11,18 @@ Eigen::Matrix4d OverlaySettings::cubeModelToWorld() const {
   return T;
 }
 
+std::vector<Eigen::Vector3d> OverlaySettings::cubeWorldVertices() const {
+  const Eigen::Matrix4d T = cubeModelToWorld();
+  std::vector<Eigen::Vector3d> vertices;
+  for (int i = 0; i < 8; ++i) {
+    // Bit 0/1/2 of i: +x/+y/+z in the model frame (as render::WireframeCube::worldVertices).
+    const Eigen::Vector3d model(i & 1 ? size / 2 : -size / 2, i & 2 ? size / 2 : -size / 2,
+                                i & 4 ? size / 2 : -size / 2);
+    vertices.push_back(T.topLeftCorner<3, 3>() * model + T.topRightCorner<3, 1>());
+  }
+  return vertices;
+}
+
 template <class Self, class Field>
 void OverlaySettings::fields(Self& p, const Field& field) {
   field("size", p.size, Range{1e-6, 1e3});

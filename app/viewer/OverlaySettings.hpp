@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 #include <string>
+#include <vector>
 
 #include "engine/config/ParamSection.hpp"
 
@@ -27,6 +28,9 @@ struct OverlaySettings : ParamSection<OverlaySettings> {
 
   // The cube's model->world transform (centre at offset + size/2 along +z).
   Eigen::Matrix4d cubeModelToWorld() const;
+  // The points the predicted overlay error is computed for: the cube's 8 vertices in the world
+  // (for an OBJ model, the cube of the same size and place stands in for its extent).
+  std::vector<Eigen::Vector3d> cubeWorldVertices() const;
   template <class Self, class Field>  // its keys, in order: ParamFields.hpp
   static void fields(Self& self, const Field& field);
   // As ParamSection's, but an absent section is left alone and one that is not a map refused.

@@ -17,6 +17,9 @@ TrackingResult PoseFrameTracker::process(const cv::Mat& frame, int, double) {
   r.worldToCamera = p.worldToCamera;
   r.status = toString(p.state);
   if (p.state != TrackingState::Tracking) r.status += ": " + p.message;
+  r.predictedErrorPx = last_.predictedErrorPx;
+  r.uncertain = last_.uncertain;
+  if (last_.uncertain) r.status = "uncertain: " + last_.uncertainReason;
   for (const StageTiming& t : p.timings) r.stages.push_back({t.stage, t.ms});
   r.matches = p.matchesA + p.matchesB;
   r.inliers = p.inliers;
@@ -47,6 +50,10 @@ TrackingResult PoseFrameTracker::process(const cv::Mat& frame, int, double) {
 }
 
 void PoseFrameTracker::applyParams(const TrackerParams& params) { tracker_.setParams(params); }
+
+void PoseFrameTracker::setOverlayPoints(const std::vector<Eigen::Vector3d>& worldPoints) {
+  if (worldPoints != tracker_.overlayPoints()) tracker_.setOverlayPoints(worldPoints);
+}
 
 std::vector<ReferenceImage> PoseFrameTracker::referenceImages() const {
   std::vector<ReferenceImage> images;

@@ -3,7 +3,8 @@
 // the pose T_k, status (with the reason when not tracking), per-stage milliseconds, match/inlier
 // counts, the pair of references in use and the relocalisation of the frame, and the debug layers
 // (corners, inlier matches to V_A drawn from the reference position, epipolar lines of the V_A
-// matches). A two-reference map runs as a map of two.
+// matches), and the overlay error the pose covariance predicts for the drawn object (status
+// "uncertain: <why>" above pose.max_predicted_error_px). A two-reference map runs as a map of two.
 #include <memory>
 
 #include "app/viewer/FrameTracker.hpp"
@@ -19,6 +20,7 @@ class PoseFrameTracker : public FrameTracker {
   void applyParams(const TrackerParams& params) override;
   std::string name() const override { return "6-DOF"; }
   std::vector<ReferenceImage> referenceImages() const override;
+  void setOverlayPoints(const std::vector<Eigen::Vector3d>& worldPoints) override;
   const MultiReferenceTracker& tracker() const { return tracker_; }
   MultiReferenceTracker& tracker() { return tracker_; }
   const MultiReferenceResult& last() const { return last_; }

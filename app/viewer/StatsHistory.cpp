@@ -43,4 +43,26 @@ std::vector<float> StatsHistory::inlierSeries() const {
   return out;
 }
 
+namespace {
+
+std::vector<float> seriesOf(const std::deque<FrameStats>& frames,
+                            std::optional<double> FrameStats::*value) {
+  std::vector<float> out;
+  out.reserve(frames.size());
+  for (const FrameStats& f : frames)
+    out.push_back(f.*value ? static_cast<float>(*(f.*value))
+                           : std::numeric_limits<float>::quiet_NaN());
+  return out;
+}
+
+}  // namespace
+
+std::vector<float> StatsHistory::predictedErrorSeries() const {
+  return seriesOf(frames_, &FrameStats::predictedErrorPx);
+}
+
+std::vector<float> StatsHistory::trueErrorSeries() const {
+  return seriesOf(frames_, &FrameStats::trueErrorPx);
+}
+
 }  // namespace reftrack::app

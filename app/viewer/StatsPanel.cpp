@@ -28,6 +28,23 @@ void plotSeries(const char* label, const std::vector<float>& values) {
                    hi + pad, ImVec2(0, 36));
 }
 
+float finiteMax(const std::vector<float>& values) {
+  float hi = 0;
+  for (float v : values)
+    if (std::isfinite(v)) hi = std::max(hi, v);
+  return hi;
+}
+
+void plotErrorSeries(const char* label, const std::vector<float>& values, float top) {
+  char overlay[48];
+  if (!values.empty() && std::isfinite(values.back()))
+    std::snprintf(overlay, sizeof overlay, "%.2f px", values.back());
+  else
+    std::snprintf(overlay, sizeof overlay, "-");
+  ImGui::PlotLines(label, values.data(), static_cast<int>(values.size()), 0, overlay, 0.0f, top,
+                   ImVec2(0, 36));
+}
+
 }  // namespace
 
 void drawStatsPanel(const StatsHistory& stats, const cv::Rect2f& placement) {
@@ -46,6 +63,14 @@ void drawStatsPanel(const StatsHistory& stats, const cv::Rect2f& placement) {
   static const char* kNames[6] = {"tx", "ty", "tz", "rx", "ry", "rz"};
   for (int c = 0; c < 6; ++c) plotSeries(kNames[c], stats.poseSeries(c));
   plotSeries("inl", stats.inlierSeries());
+  // Overlay error of the drawn object: predicted from the pose covariance and, with ground truth,
+  // the true one beside it on the same scale (0 to the larger of the two's maxima).
+  const std::vector<float> predicted = stats.predictedErrorSeries();
+  const std::vector<float> measured = stats.trueErrorSeries();
+  const float top = 1.1f * std::max({0.5f, finiteMax(predicted),
+                                     stats.groundTruthLoaded() ? finiteMax(measured) : 0.0f});
+  plotErrorSeries("pred", predicted, top);
+  if (stats.groundTruthLoaded()) plotErrorSeries("true", measured, top);
   ImGui::PopItemWidth();
   ImGui::End();
 }

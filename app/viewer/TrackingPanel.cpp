@@ -47,6 +47,8 @@ void drawTrackingPanel(ViewerState& state, const cv::Rect2f& placement) {
     changed |= ImGui::Checkbox("estimate readout", &p.pose.estimateRollingShutter);
     // Learned reliability of the map's points and corners (0: the corner model's weights alone).
     changed |= inputDouble("reliability prior", p.pose.reliabilityPriorObservations, 1.0, "%.1f");
+    // Above this predicted overlay error (px) a frame is "uncertain" and drawn dimmed (0: off).
+    changed |= inputDouble("max predicted px", p.pose.maxPredictedErrorPx, 0.5, "%.1f");
     if (state.rollingShutterReadout)
       ImGui::Text("readout in use: %.3f", *state.rollingShutterReadout);
   }

@@ -38,6 +38,7 @@
 #include "app/viewer/ViewerState.hpp"
 #include "engine/core/AtomicFile.hpp"
 #include "engine/core/Error.hpp"
+#include "engine/tracking/PredictedOverlayError.hpp"
 #include "render/RenderTarget.hpp"
 #include "render/context/GlfwWindowContext.hpp"
 #include "render/gl/Texture2D.hpp"
@@ -58,6 +59,8 @@ void ViewerOptions::check() const {
     throw Error("camera file '" + camera.string() + "' does not exist");
   if (!poses.empty() && !fs::is_regular_file(poses))
     throw Error("trajectory file '" + poses.string() + "' does not exist");
+  if (!groundTruth.empty() && !fs::is_regular_file(groundTruth))
+    throw Error("ground-truth file '" + groundTruth.string() + "' does not exist");
   if (!screenshot.empty() && screenshot.extension() != ".png")
     throw Error("screenshot '" + screenshot.string() + "': the file name must end in .png");
   if (ui && !headless) throw Error("--ui applies to --headless runs (the window always has it)");
@@ -89,6 +92,8 @@ struct Session {
   std::unique_ptr<FrameGrabber> grabber;
   PinholeCamera camera;
   std::unique_ptr<FrameTracker> tracker;  // null: no poses (video only)
+  // The frames' true poses (--gt, or a sim: input's own) beside a live tracker; null: none.
+  std::unique_ptr<TrajectoryReplayTracker> truth;
   // Builds a live tracker for a camera (ViewerOptions::makeTracker); used again when a camera
   // calibrated in the viewer is put to use.
   std::function<std::unique_ptr<FrameTracker>(const PinholeCamera&, const TrackerParams&)>
@@ -164,6 +169,15 @@ Session openSession(const ViewerOptions& options, ViewerState& state) {
   else if (sim)
     s.tracker = std::make_unique<TrajectoryReplayTracker>(sim->groundTruth(), source->fps());
   if (s.tracker) s.tracker->applyParams(state.settings.tracker);
+  // Ground truth beside a live tracker (a replayed trajectory is its own truth): the true overlay
+  // error in the Stats panel.
+  const bool liveTracker = s.tracker && options.poses.empty() && options.makeTracker;
+  if (!options.groundTruth.empty() && liveTracker)
+    s.truth = std::make_unique<TrajectoryReplayTracker>(
+        TrajectoryReplayTracker::load(options.groundTruth, source->fps()));
+  else if (sim && liveTracker)
+    s.truth = std::make_unique<TrajectoryReplayTracker>(sim->groundTruth(), source->fps());
+  state.stats.setGroundTruthLoaded(s.truth != nullptr);
   state.trackerName = s.tracker                            ? s.tracker->name()
                       : guessCamera && options.makeTracker ? "none until calibrated"
                                                            : "none (no --poses)";
@@ -200,6 +214,8 @@ struct FrameLoop {
   TrackingResult result;
   Clock::time_point lastProcessed{};
   int processed = 0;
+  int predictedFrames = 0, trueFrames = 0;  // the overlay error's sums (ViewerRunSummary)
+  double predictedSumPx = 0.0, trueSumPx = 0.0;
 
   FrameLoop(Session& s, ViewerState& st) : session(s), state(st) {}
 
@@ -250,6 +266,7 @@ struct FrameLoop {
                   std::to_string(session.camera.imageSize().width) + "x" +
                   std::to_string(session.camera.imageSize().height));
     if (session.tracker) {
+      session.tracker->setOverlayPoints(state.settings.overlay.cubeWorldVertices());
       result = session.tracker->process(current.image, current.index, current.timestamp);
     } else {
       result = TrackingResult{};
@@ -268,6 +285,23 @@ struct FrameLoop {
     stats.status = result.status;
     if (result.references) state.references.addFrame(*result.references);
     if (result.worldToCamera) stats.pose = result.worldToCamera->toVector6();
+    stats.predictedErrorPx = result.predictedErrorPx;
+    if (session.truth && result.worldToCamera) {
+      const TrackingResult truth =
+          session.truth->process(current.image, current.index, current.timestamp);
+      if (truth.worldToCamera)
+        stats.trueErrorPx =
+            overlayErrorPx(session.camera, *truth.worldToCamera, *result.worldToCamera,
+                           state.settings.overlay.cubeWorldVertices());
+    }
+    if (stats.predictedErrorPx) {
+      predictedSumPx += *stats.predictedErrorPx;
+      ++predictedFrames;
+    }
+    if (stats.trueErrorPx) {
+      trueSumPx += *stats.trueErrorPx;
+      ++trueFrames;
+    }
     state.stats.add(std::move(stats));
     state.lastStatus = result.status;
     state.rollingShutterReadout = result.rollingShutterReadout;
@@ -339,6 +373,13 @@ struct FrameLoop {
     if (!recorder) return;
     recorder->write(bgr, current.timestamp, result.worldToCamera);
     state.record.framesWritten = recorder->framesWritten();
+  }
+
+  void summariseOverlayError(ViewerRunSummary& summary) const {
+    summary.predictedErrorFrames = predictedFrames;
+    summary.trueErrorFrames = trueFrames;
+    if (predictedFrames > 0) summary.predictedErrorMeanPx = predictedSumPx / predictedFrames;
+    if (trueFrames > 0) summary.trueErrorMeanPx = trueSumPx / trueFrames;
   }
 
   // Closes the recording; returns the paths written.
@@ -538,6 +579,7 @@ ViewerRunSummary runHeadless(const ViewerOptions& options, render::GlContext& co
     }
   }
   summary.framesProcessed = loop.processed;
+  loop.summariseOverlayError(summary);
   summary.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   summary.sourceFps = state.source.fps;
   summary.backend = context.backendName();
@@ -681,6 +723,7 @@ ViewerRunSummary runWindow(const ViewerOptions& options, render::GlfwWindowConte
     summary.trajectory = VideoRecorder::trajectoryPathFor(options.record);
   }
   summary.framesProcessed = loop.processed;
+  loop.summariseOverlayError(summary);
   summary.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   summary.sourceFps = state.source.fps;
   summary.backend = window.backendName();

@@ -45,6 +45,9 @@ struct ViewerOptions {
   int reportEvery = 0;
   int loops = 1;  // play a video file / image folder this many times (`--loop N`)
   int soakWarmup = 1000;
+  // TUM ground truth of the frames (optional; `--gt`): with a live tracker, the Stats panel plots
+  // the overlay's true error beside the predicted one. sim: inputs bring their own.
+  std::filesystem::path groundTruth;
   // Builds the live tracker (homography / 6-DOF) for the camera; used when --poses is not given.
   // Unset: sim: inputs replay their ground truth, other inputs show the video only.
   std::function<std::unique_ptr<FrameTracker>(const PinholeCamera&, const TrackerParams&)>
@@ -68,6 +71,11 @@ struct ViewerRunSummary {
   std::string calibrationMessage;
   std::filesystem::path calibrationFile;  // the camera written (calibrationOut), else empty
   std::optional<SoakSummary> soak;        // with reportEvery
+  // The overlay error of the drawn cube over the processed frames (the Stats panel's "pred" and
+  // "true" curves): the mean predicted from the pose covariance over the frames with a
+  // prediction, and the mean true one over the frames with ground truth (--gt, sim:).
+  int predictedErrorFrames = 0, trueErrorFrames = 0;
+  double predictedErrorMeanPx = 0.0, trueErrorMeanPx = 0.0;
 };
 
 // Runs the viewer. `context`: an existing current context to use (a GlfwWindowContext for the

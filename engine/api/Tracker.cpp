@@ -74,6 +74,8 @@ const char* toString(Tracker::State state) {
       return "tracking";
     case Tracker::State::Lost:
       return "lost";
+    case Tracker::State::Uncertain:
+      return "uncertain";
   }
   return "unknown";
 }
@@ -95,13 +97,18 @@ struct Tracker::Impl {
                 : p.state == TrackingState::Lost   ? State::Lost
                                                    : State::Initialising;
     out.reason = p.message;
+    if (out.state == State::Tracking && r.uncertain) {
+      out.state = State::Uncertain;
+      out.reason = r.uncertainReason;
+    }
     if (!r.notice.empty()) out.reason += (out.reason.empty() ? "" : "; ") + r.notice;
     out.inliers = p.inliers;
     out.referenceA = r.referenceA;
     out.referenceB = r.referenceB;
     out.relocalised = r.relocalisation.succeeded;
-    if (out.state == State::Tracking && p.worldToCamera) {
+    if (p.state == TrackingState::Tracking && p.worldToCamera) {
       out.worldToCamera = p.worldToCamera;
+      out.predictedErrorPx = r.predictedErrorPx;
       if (p.T_Ak) {
         const RigidPose T_A = p.T_Ak->inverse() * *p.worldToCamera;
         out.covariance = worldCovariance(p.covariance, *p.T_Ak, T_A);
@@ -211,6 +218,11 @@ void Tracker::reset() {
   impl_->trackedSinceReset = false;
   if (impl_->sixDof) impl_->sixDof->reset();
   if (impl_->homography) impl_->homography->reset();
+}
+
+void Tracker::setOverlayPoints(const std::vector<Eigen::Vector3d>& worldPoints) {
+  if (!impl_->sixDof) throw Error("tracker: overlay points apply to 6-DOF tracking (a map)");
+  impl_->sixDof->setOverlayPoints(worldPoints);
 }
 
 Tracker::Mode Tracker::mode() const { return impl_->mode; }

@@ -12,6 +12,7 @@
 #include <opencv2/core.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "engine/geometry/RigidPose.hpp"
 
@@ -27,7 +28,10 @@ struct TrackerOptions {
 class Tracker {
  public:
   enum class Mode { SixDof, Homography };
-  enum class State { Initialising, Tracking, Lost };  // Initialising: no pose since open/reset
+  // Initialising: no pose since open/reset. Uncertain (6-DOF): tracked, but the overlay error the
+  // covariance predicts exceeds pose.max_predicted_error_px — the pose and covariance are given
+  // (the tracker goes on from them) but should not be drawn as if exact; `reason` says why.
+  enum class State { Initialising, Tracking, Lost, Uncertain };
 
   struct Result {
     State state = State::Initialising;
@@ -40,8 +44,15 @@ class Tracker {
     // 6-DOF: covariance of worldToCamera's 6-vector (t_x, t_y, t_z, r_x, r_y, r_z), r axis-angle
     // (metres, radians): the tracker's Omega_k (paper Sec. 5) propagated to the world frame. It
     // counts the frame's corner noise, not the map's: on an exact synthetic scene the errors were
-    // 2.3 times the predicted SDs (RMS; tests/engine/api/Tracker_test.cpp).
+    // 2.3 times the predicted SDs (RMS; tests/engine/api/Tracker_test.cpp), on real clips over 10
+    // times: predictedErrorPx rescales it by the frame's observed residuals and a calibration.
     std::optional<Eigen::Matrix<double, 6, 6>> covariance;
+    // 6-DOF, with a pose: the overlay error in pixels the pose covariance predicts for the
+    // overlay's points (setOverlayPoints): the RMS over them of the expected image displacement,
+    // rescaled by the frame's observed residuals and times pose.predicted_error_scale
+    // (engine/tracking/PredictedOverlayError.hpp); on the real desk and shelf clips the median of
+    // true / predicted cube error is 1.0 and 1.25.
+    std::optional<double> predictedErrorPx;
     std::optional<cv::Matx33d> homography;  // homography mode: reference pixel -> frame pixel
     int inliers = 0;                        // matches supporting the result
     int referenceA = -1, referenceB = -1;   // 6-DOF: the pair of references in use (-1: none)
@@ -72,6 +83,11 @@ class Tracker {
 
   Result track(const cv::Mat& frame);
   void reset();  // forget the past: the next frame is tracked as a first one (frameIndex 0)
+  // 6-DOF: the object whose overlay error predictedErrorPx predicts, as points in the world frame
+  // (e.g. the 8 vertices of the drawn cube); empty: the corners of the box holding the central
+  // part of the map's points (the default). Throws reftrack::Error in homography mode or for a
+  // point that is not finite.
+  void setOverlayPoints(const std::vector<Eigen::Vector3d>& worldPoints);
 
   Mode mode() const;
   // The frame size track() accepts: the map's (6-DOF), the camera's (homography mode with a
@@ -86,6 +102,7 @@ class Tracker {
   std::unique_ptr<Impl> impl_;
 };
 
-const char* toString(Tracker::State state);  // "initialising", "tracking", "lost"
+// "initialising", "tracking", "lost", "uncertain"
+const char* toString(Tracker::State state);
 
 }  // namespace reftrack

@@ -31,6 +31,8 @@ void PoseParams::fields(Self& p, const Field& field) {
   field("verify_min_share", p.verifyMinShare, Range{0.0, 1.0});
   field("verify_unsure_points", p.verifyUnsurePoints, Range{0, 100000});
   field("verify_unsure_share", p.verifyUnsureShare, Range{0.0, 1.0});
+  field("predicted_error_scale", p.predictedErrorScale, Range{1e-6, 1e6});
+  field("max_predicted_error_px", p.maxPredictedErrorPx, Range{0.0, 1e6});
 }
 
 template struct ParamSection<PoseParams>;

@@ -14,6 +14,7 @@
 #include "engine/core/ThreadCpuClock.hpp"
 #include "engine/estimation/RollingShutterEstimator.hpp"
 #include "engine/relocalisation/Relocaliser.hpp"
+#include "engine/tracking/PredictedOverlayError.hpp"
 #include "engine/tracking/ReferenceSelector.hpp"
 
 namespace reftrack {
@@ -85,6 +86,9 @@ struct MultiReferenceTracker::Impl {
   bool noticePending = false;         // relocalisationOff not yet reported with a frame
   int framesSinceRelocalisation = 0;  // lost frames since the last attempt
 
+  // The object of the predicted overlay error, world frame (setOverlayPoints).
+  std::vector<Eigen::Vector3d> overlayPoints;
+
   Impl(MultiReferenceMap m, const TrackerParams& p, PoseTrackerLimits l)
       : map(checked(std::move(m))),
         params(p),
@@ -98,6 +102,13 @@ struct MultiReferenceTracker::Impl {
                   " references, at least 2 are needed");
     buildInitialisationPairs();
     buildRelocaliser();
+    setDefaultOverlayPoints();
+  }
+
+  void setDefaultOverlayPoints() {
+    std::vector<Eigen::Vector3d> world;
+    for (const MapPoint& p : map.points) world.push_back(p.world);
+    overlayPoints = centralBoxCorners(world);
   }
 
   void buildRelocaliser() {
@@ -274,6 +285,12 @@ MultiReferenceResult MultiReferenceTracker::Impl::process(const cv::Mat& frame) 
     out.tracking.message = attempts.earlierMessages + "; " + out.tracking.message;
   out.tracking.timings.insert(out.tracking.timings.begin(), attempts.earlier.begin(),
                               attempts.earlier.end());
+  // Issue 32: the overlay error the covariance predicts; above the limit the frame is uncertain.
+  const OverlayErrorCheck overlay =
+      checkPredictedOverlayError(map.camera, out.tracking, overlayPoints, params.pose);
+  out.predictedErrorPx = overlay.predictedErrorPx;
+  out.uncertain = !overlay.uncertainReason.empty();
+  out.uncertainReason = overlay.uncertainReason;
   out.tracking.totalMs = msSince(start);
   return out;
 }
@@ -542,6 +559,19 @@ void MultiReferenceTracker::reset() {
   m.lastPose.reset();
   m.framesSinceTracked = 0;
   m.framesSinceRelocalisation = m.params.relocalisation.attemptEveryFrames;
+}
+
+void MultiReferenceTracker::setOverlayPoints(std::vector<Eigen::Vector3d> worldPoints) {
+  for (const Eigen::Vector3d& p : worldPoints)
+    if (!p.allFinite()) throw Error("MultiReferenceTracker: an overlay point is not finite");
+  if (worldPoints.empty())
+    impl_->setDefaultOverlayPoints();
+  else
+    impl_->overlayPoints = std::move(worldPoints);
+}
+
+const std::vector<Eigen::Vector3d>& MultiReferenceTracker::overlayPoints() const {
+  return impl_->overlayPoints;
 }
 
 const MultiReferenceMap& MultiReferenceTracker::map() const { return impl_->map; }

@@ -10,9 +10,12 @@
 // relocalisation.attempt_every_frames-th frame the Relocaliser (when enabled and the map has a
 // usable keypoint layer; else said once in `notice`) proposes a pose from anywhere in the mapped
 // volume, which the pair best placed for it refines and verifies on the same frame.
+#include <Eigen/Core>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "engine/config/TrackerParams.hpp"
 #include "engine/estimation/CornerVarianceModel.hpp"
@@ -39,6 +42,14 @@ struct MultiReferenceResult {
   // Said once, with the first frame after construction or a parameter change: why the tracker
   // runs without relocalisation when it was asked for (a map with a thin or no keypoint layer).
   std::string notice;
+  // The overlay error the pose covariance predicts for the overlay's points (setOverlayPoints;
+  // PredictedOverlayError.hpp: rescaled a posteriori, times pose.predicted_error_scale); nullopt
+  // unless tracking.
+  std::optional<double> predictedErrorPx;
+  // Tracking, but predictedErrorPx > pose.max_predicted_error_px: the pose is given and tracking
+  // goes on from it, yet it should not be drawn as if exact; the reason says by how much.
+  bool uncertain = false;
+  std::string uncertainReason;
 };
 
 class MultiReferenceTracker {
@@ -56,6 +67,11 @@ class MultiReferenceTracker {
   // Back to initialising, as a fresh tracker: the pair trackers' learned reliability is forgotten
   // too (so a reset tracker gives the same poses as a new one).
   void reset();
+  // The object whose overlay error predictedErrorPx predicts: its points in the world frame (e.g.
+  // the 8 vertices of the drawn cube). Empty: the 8 corners of the box of the map points' central
+  // part (centralBoxCorners), the default.
+  void setOverlayPoints(std::vector<Eigen::Vector3d> worldPoints);
+  const std::vector<Eigen::Vector3d>& overlayPoints() const;
   const MultiReferenceMap& map() const;
   TrackingState state() const;
   std::pair<int, int> referencesInUse() const;  // (-1, -1) before the first pose

@@ -993,6 +993,8 @@ PoseTrackingResult PoseTracker::Impl::process(const cv::Mat& frame) {
   r.T_Ak = TAk;
   r.worldToCamera = TAk * map.T_A;
   r.covariance = est->covariance;
+  for (const ThreeViewMatch& m : inliers->measurements.threeView)
+    r.supportPointsA.push_back(m.pointA);
   if (!meas.shiftPerReadout.empty()) {
     // The tracked frame's residuals inform the readout's estimate (used from a later frame on).
     std::vector<RollingShutterObservation> observations;

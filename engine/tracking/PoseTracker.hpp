@@ -67,6 +67,8 @@ struct PoseTrackingResult {
   bool verificationFailed = false;
   std::vector<StageTiming> timings;
   double totalMs = 0.0;
+  // The map points (camera A's frame) of the three-view inliers supportSdPx was measured on.
+  std::vector<Eigen::Vector3d> supportPointsA;
   // Debug primitives in frame pixels: corners and inlier matches (frame pixel, reference pixel).
   std::vector<cv::Point2f> frameCorners;
   std::vector<std::pair<cv::Point2f, cv::Point2f>> inliersA, inliersB;

@@ -65,6 +65,7 @@ class TrackerFromPython(unittest.TestCase):
             self.assertIn(r.state, ("initialising", "tracking", "lost"))
             if r.state != "tracking":
                 self.assertIsNone(r.world_to_camera)
+                self.assertIsNone(r.predicted_error_px)
                 self.assertTrue(r.reason)
                 continue
             T = r.world_to_camera
@@ -115,6 +116,36 @@ class TrackerFromPython(unittest.TestCase):
             tracker = reftrack.Tracker.open_map(MAP, params=params)
             states = [tracker.track(f).state for f in clip]
             self.assertIn("tracking", states, params)
+
+    def test_predicted_overlay_error_and_the_uncertain_state(self):
+        # The predicted overlay error of the object given (a 10 cm cube on the marker, as the
+        # recording draws it): a positive float while there is a pose. With a limit below it
+        # (pose.max_predicted_error_px) each tracked frame is 'uncertain', its pose still given
+        # and the same as without the limit (the tracker goes on from it).
+        cube = np.array([[x, y, z] for x in (-0.05, 0.05) for y in (-0.05, 0.05)
+                         for z in (0.0, 0.1)])
+        clip = frames()[:5]
+        plain = reftrack.Tracker.open_map(MAP, params={"pose": {"max_predicted_error_px": 0}})
+        strict = reftrack.Tracker.open_map(MAP, params={"pose": {"max_predicted_error_px": 1e-4}})
+        plain.set_overlay_points(cube)
+        strict.set_overlay_points(cube)
+        for frame in clip:
+            p, s = plain.track(frame), strict.track(frame)
+            self.assertEqual(p.state, "tracking", p.reason)
+            self.assertIsInstance(p.predicted_error_px, float)
+            self.assertGreater(p.predicted_error_px, 1e-4)
+            self.assertEqual(s.state, "uncertain")
+            self.assertIn("> pose.max_predicted_error_px 0.0001", s.reason)
+            np.testing.assert_array_equal(s.world_to_camera, p.world_to_camera)
+            self.assertEqual(s.predicted_error_px, p.predicted_error_px)
+        # Another object, another prediction; 0x3 restores the default (the map's central box).
+        plain.set_overlay_points(10 * cube)
+        far = plain.track(clip[-1]).predicted_error_px
+        plain.set_overlay_points(np.zeros((0, 3)))
+        default = plain.track(clip[-1]).predicted_error_px
+        self.assertNotAlmostEqual(far, default, places=6)
+        with self.assertRaises(reftrack.Error):
+            plain.set_overlay_points(np.array([[0.0, float("nan"), 0.0]]))
 
     def test_reset_starts_again_at_frame_0(self):
         tracker = reftrack.Tracker.open_map(MAP)

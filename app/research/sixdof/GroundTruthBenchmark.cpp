@@ -100,6 +100,33 @@ std::vector<CutRecovery> cutRecoveries(const MethodRun& run) {
     recoveries.push_back(r);
   }
   return recoveries;
+
+PredictionSummary summarisePrediction(const MethodRun& run, const std::vector<bool>& truth) {
+  PredictionSummary s;
+  std::vector<double> ratios, predicted, uncertainErrors;
+  for (std::size_t k = 0; k < truth.size() && k < run.predictedErrorPx.size(); ++k) {
+    const double e = run.errorPx[k], p = run.predictedErrorPx[k];
+    if (!truth[k] || std::isnan(e)) continue;
+    const bool uncertain = k < run.uncertain.size() && run.uncertain[k];
+    if (uncertain) uncertainErrors.push_back(e);
+    s.wrongNotUncertain += e > kWrongPosePx && !uncertain ? 1 : 0;
+    if (!std::isfinite(e) || !(p > 0)) continue;
+    ratios.push_back(e / p);
+    predicted.push_back(p);
+  }
+  s.frames = static_cast<int>(ratios.size());
+  s.uncertain = static_cast<int>(uncertainErrors.size());
+  if (!uncertainErrors.empty())
+    s.uncertainTrueMeanPx = std::accumulate(uncertainErrors.begin(), uncertainErrors.end(), 0.0) /
+                            static_cast<double>(uncertainErrors.size());
+  if (ratios.empty()) return s;
+  s.ratioMedian = percentileOf(ratios, 0.5);
+  s.ratioP25 = percentileOf(ratios, 0.25);
+  s.ratioP75 = percentileOf(ratios, 0.75);
+  s.predictedMedianPx = percentileOf(predicted, 0.5);
+  s.predictedP95Px = percentileOf(predicted, 0.95);
+  s.predictedMaxPx = *std::max_element(predicted.begin(), predicted.end());
+  return s;
 }
 
 std::vector<Eigen::Vector3d> cubeOn(const Eigen::Vector3d& baseCentre, double edge) {
@@ -125,13 +152,22 @@ namespace {
 
 class ReftrackMethod final : public PoseMethod {
  public:
-  ReftrackMethod(const MultiReferenceMap& map, const TrackerParams& params)
-      : map_(map), params_(params) {}
+  ReftrackMethod(const MultiReferenceMap& map, const TrackerParams& params,
+                 std::vector<Eigen::Vector3d> cube)
+      : map_(map), params_(params), cube_(std::move(cube)) {}
   std::string name() const override { return "reftrack"; }
-  void startRun() override { tracker_ = std::make_unique<MultiReferenceTracker>(map_, params_); }
+  void startRun() override {
+    tracker_ = std::make_unique<MultiReferenceTracker>(map_, params_);
+    tracker_->setOverlayPoints(cube_);  // the predicted error is the scoring cube's
+  }
   void coldStart() override { tracker_->reset(); }
+  double predictedErrorPx() const override { return predicted_; }
+  bool uncertain() const override { return uncertain_; }
   std::optional<RigidPose> locate(const cv::Mat& frame, std::string& reason) override {
-    const PoseTrackingResult r = tracker_->process(frame).tracking;
+    const MultiReferenceResult multi = tracker_->process(frame);
+    predicted_ = multi.predictedErrorPx.value_or(NAN);
+    uncertain_ = multi.uncertain;
+    const PoseTrackingResult& r = multi.tracking;
     if (r.state == TrackingState::Tracking && r.worldToCamera) return r.worldToCamera;
     reason = r.message.substr(0, r.message.find(" ("));
     if (reason.empty()) reason = toString(r.state);
@@ -141,7 +177,10 @@ class ReftrackMethod final : public PoseMethod {
  private:
   const MultiReferenceMap& map_;
   TrackerParams params_;
+  std::vector<Eigen::Vector3d> cube_;
   std::unique_ptr<MultiReferenceTracker> tracker_;
+  double predicted_ = NAN;
+  bool uncertain_ = false;
 };
 
 class PeerMethod final : public PoseMethod {
@@ -225,6 +264,8 @@ void playFrames(PoseMethod& method, const GroundTruthSequence& s,
     run.cpuMs.push_back(threadCpuMs() - cpu0);
     if (!score) continue;
     run.poses[frame] = pose;
+    if (frame < run.predictedErrorPx.size()) run.predictedErrorPx[frame] = method.predictedErrorPx();
+    if (frame < run.uncertain.size()) run.uncertain[frame] = method.uncertain();
     const std::optional<RigidPose>& truth = s.truth[frame];
     if (!truth) continue;
     if (pose)
@@ -293,7 +334,8 @@ GroundTruthBenchmarkResult runGroundTruthBenchmark(const GroundTruthSequence& s,
   for (const std::string& name : groundTruthBenchmarkMethods()) {
     if (std::find(o.methods.begin(), o.methods.end(), name) == o.methods.end()) continue;
     if (name == "reftrack") {
-      methods.push_back(std::make_unique<ReftrackMethod>(prepared.map, params));
+      methods.push_back(
+          std::make_unique<ReftrackMethod>(prepared.map, params, cubeOn(o.cubeCentre, o.cubeEdge)));
     } else if (name == "kalman") {
       auto kalman =
           std::make_unique<KalmanMethod>(prepared.map.pair(0, 1), frameRate(s.timestamps));
@@ -315,6 +357,8 @@ GroundTruthBenchmarkResult runGroundTruthBenchmark(const GroundTruthSequence& s,
       run.plan = plans[i];
       run.errorPx.assign(static_cast<std::size_t>(result.frames), NAN);
       run.poses.resize(static_cast<std::size_t>(result.frames));
+      run.predictedErrorPx.assign(static_cast<std::size_t>(result.frames), NAN);
+      run.uncertain.assign(static_cast<std::size_t>(result.frames), false);
       result.runs.push_back(std::move(run));
     }
   // Each pass runs every method in turn, in every order, so all see the same machine load.

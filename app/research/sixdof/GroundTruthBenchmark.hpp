@@ -62,6 +62,11 @@ struct MethodRun {
   std::vector<std::optional<RigidPose>> poses;  // per frame index, first pass: world->camera
   std::vector<double> cpuMs;                    // every played frame, every pass
   std::map<std::string, int> noPose;  // reason -> played frames with a true pose but none estimated
+  // reftrack only (NaN elsewhere), per frame index, first pass: the cube error its covariance
+  // predicts (MultiReferenceResult::predictedErrorPx for the scoring cube), and whether the frame
+  // was reported uncertain (pose.max_predicted_error_px).
+  std::vector<double> predictedErrorPx;
+  std::vector<bool> uncertain;
 };
 
 struct MethodSummary {
@@ -92,6 +97,18 @@ struct CutRecovery {
 
 // Per cut of run.plan (none unless the order has cuts), from run.errorPx.
 std::vector<CutRecovery> cutRecoveries(const MethodRun& run);
+
+// Calibration of the predicted error (issue 32) over the posed frames with a true pose and a
+// prediction: true / predicted cube error per frame, and the predictions themselves.
+struct PredictionSummary {
+  int frames = 0;  // posed frames with a finite true error and a prediction
+  double ratioMedian = NAN, ratioP25 = NAN, ratioP75 = NAN;  // true / predicted
+  double predictedMedianPx = NAN, predictedP95Px = NAN, predictedMaxPx = NAN;
+  int uncertain = 0;                 // frames reported uncertain
+  double uncertainTrueMeanPx = NAN;  // ... their mean true error
+  int wrongNotUncertain = 0;         // posed frames > kWrongPosePx off not reported uncertain
+};
+PredictionSummary summarisePrediction(const MethodRun& run, const std::vector<bool>& truth);
 
 struct GroundTruthBenchmarkResult {
   std::string framesDescription, groundTruthDescription;
@@ -124,6 +141,10 @@ class PoseMethod {
   virtual void coldStart() = 0;  // before each frame of a cold-start order (outside the timing)
   // The world->camera pose of `frame`, or nullopt with `reason` set.
   virtual std::optional<RigidPose> locate(const cv::Mat& frame, std::string& reason) = 0;
+  // The last located frame's predicted cube error, and whether it was reported uncertain
+  // (reftrack only).
+  virtual double predictedErrorPx() const { return NAN; }
+  virtual bool uncertain() const { return false; }
 };
 
 // One pass of `method` over run.plan: startRun(), then each planned frame of `sequence` in turn

@@ -37,6 +37,12 @@ std::string columnName(const MethodRun& run) {
   return name + "_" + run.order.name + "_px";
 }
 
+// "reftrack_sequence_predicted_px".
+std::string predictedColumnName(const MethodRun& run) {
+  std::string name = columnName(run);
+  return name.substr(0, name.size() - 3) + "_predicted_px";
+}
+
 // A number, or "-" when there is none.
 std::string cell(double value, int decimals) {
   return std::isnan(value) ? std::string("-") : textf("%.*f", decimals, value);
@@ -158,6 +164,19 @@ std::string groundTruthBenchmarkTable(const GroundTruthBenchmarkResult& r) {
           "mean_px, p95_px, max_px)\n",
           run.method.c_str(), run.order.name.c_str(), behind);
   }
+  for (const MethodRun& run : r.runs) {
+    const PredictionSummary p = summarisePrediction(run, r.truth);
+    if (p.frames == 0) continue;
+    out += textf(
+        "predicted cube error, %s %s (issue 32): median %s, p95 %s, max %s px over %d frames; "
+        "true / predicted median %s (quartiles %s-%s); uncertain %d (their true error mean %s "
+        "px); >5px and not uncertain %d\n",
+        run.method.c_str(), run.order.name.c_str(),
+        cell(p.predictedMedianPx, 3).c_str(), cell(p.predictedP95Px, 3).c_str(),
+        cell(p.predictedMaxPx, 3).c_str(), p.frames, cell(p.ratioMedian, 2).c_str(),
+        cell(p.ratioP25, 2).c_str(), cell(p.ratioP75, 2).c_str(), p.uncertain,
+        cell(p.uncertainTrueMeanPx, 2).c_str(), p.wrongNotUncertain);
+  }
   for (const MethodRun& run : r.runs)
     for (const auto& [reason, frames] : run.noPose)
       out += textf("no pose, %s %s: %d x %s\n", run.method.c_str(), run.order.name.c_str(), frames,
@@ -173,6 +192,8 @@ void writeGroundTruthBenchmarkCsv(const GroundTruthBenchmarkResult& r,
     if (!out) throw Error("cannot write '" + csv.string() + "'");
     out << "frame,true_pose";
     for (const MethodRun& run : r.runs) out << ',' << columnName(run);
+    for (const MethodRun& run : r.runs)  // the predicted error (reftrack), after the errors
+      if (!run.predictedErrorPx.empty()) out << ',' << predictedColumnName(run);
     out << '\n' << std::setprecision(8);
     std::vector<std::vector<bool>> played;
     for (const MethodRun& run : r.runs) played.push_back(playedFrames(run.plan, r.frames));
@@ -183,6 +204,12 @@ void writeGroundTruthBenchmarkCsv(const GroundTruthBenchmarkResult& r,
         out << ',';
         const double e = r.runs[i].errorPx[frame];
         if (played[i][frame] && !std::isnan(e)) out << e;
+      }
+      for (const MethodRun& run : r.runs) {
+        if (run.predictedErrorPx.empty()) continue;
+        out << ',';
+        const double p = run.predictedErrorPx[static_cast<std::size_t>(k)];
+        if (!std::isnan(p)) out << p;
       }
       out << '\n';
     }

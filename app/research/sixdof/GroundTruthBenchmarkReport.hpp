@@ -18,9 +18,9 @@ inline constexpr double kPlotErrorCapPx = 10.0;
 
 std::string groundTruthBenchmarkTable(const GroundTruthBenchmarkResult& result);
 
-// Header `frame,true_pose,<method>_<order>_px...` (e.g. reftrack_shuffled-sequence_px); one row
-// per frame; an empty cell: no pose, or the frame not played in that order (stride:K); inf: the
-// pose put the whole cube behind the camera.
+// Header `frame,true_pose,<method>_<order>_px...`, then `<method>_<order>_predicted_px` for the
+// runs with a predicted error (reftrack); one row per frame; an empty cell: no pose (or no
+// prediction); inf: the pose put the whole cube behind the camera.
 void writeGroundTruthBenchmarkCsv(const GroundTruthBenchmarkResult& result,
                                   const std::filesystem::path& csv);
 void writeGroundTruthBenchmarkPlot(const GroundTruthBenchmarkResult& result,

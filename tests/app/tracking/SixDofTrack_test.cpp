@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/videoio.hpp>
@@ -22,6 +23,14 @@ int lineCount(const std::filesystem::path& file) {
   int n = 0;
   for (std::string line; std::getline(in, line);) n += !line.empty() && line[0] != '#';
   return n;
+}
+
+// The predicted_error_px field of a CSV row: the one before the quoted message (NaN if empty).
+double predictedErrorOf(const std::string& row) {
+  const std::size_t message = row.rfind(",\"", row.size() - 2);
+  const std::size_t start = row.rfind(',', message - 1) + 1;
+  const std::string field = row.substr(start, message - start);
+  return field.empty() ? NAN : std::stod(field);
 }
 
 // simulate -> prepare (marker) -> track: every output exists, has one entry per frame, and the
@@ -60,10 +69,36 @@ TEST(SixDofTrack, TracksAFolderAndWritesTrajectoryCsvAndVideo) {
     EXPECT_NE(header.find(",reference_a,reference_b,reloc_attempted,reloc_succeeded,reloc_ms"),
               std::string::npos)
         << header;
-    EXPECT_EQ(header.substr(header.size() - 8), ",message");
+    EXPECT_EQ(header.substr(header.size() - 27), ",predicted_error_px,message");
     std::getline(in, row);
     EXPECT_NE(row.find(",tracking,"), std::string::npos) << row;
     EXPECT_NE(row.find(",0,1,0,0,0,"), std::string::npos) << row;
+    // The cube's predicted overlay error: a positive number of pixels, before the empty message.
+    EXPECT_GT(predictedErrorOf(row), 0.0) << row;
+  }
+  {
+    // A limit below every frame's prediction: each tracked frame is uncertain with the reason,
+    // its pose still written.
+    std::ofstream(dir / "low_limit.yml") << "pose:\n  max_predicted_error_px: 0.0001\n";
+    SixDofTrackOptions low = o;
+    low.params = dir / "low_limit.yml";
+    low.maxFrames = 3;
+    low.record.clear();
+    low.csv = dir / "out/uncertain.csv";
+    low.trajectory = dir / "out/uncertain.txt";
+    EXPECT_EQ(runSixDofTrack(low), 3);
+    std::ifstream in(low.csv);
+    std::string header, row;
+    std::getline(in, header);
+    int uncertain = 0;
+    while (std::getline(in, row)) {
+      EXPECT_NE(row.find(",uncertain,"), std::string::npos) << row;
+      EXPECT_NE(row.find("> pose.max_predicted_error_px 0.0001\""), std::string::npos) << row;
+      EXPECT_GT(predictedErrorOf(row), 1e-4) << row;
+      ++uncertain;
+    }
+    EXPECT_EQ(uncertain, 3);
+    EXPECT_EQ(TumTrajectory::load(low.trajectory).poses.size(), 3u);
   }
   const TumTrajectory estimate = TumTrajectory::load(o.trajectory);
   const TumTrajectory truth = TumTrajectory::load(dir / "seq/groundtruth.txt");

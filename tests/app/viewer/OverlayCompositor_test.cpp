@@ -136,6 +136,45 @@ TEST_F(OverlayCompositorTest, LostFramesShowTheVideoOnly) {
   EXPECT_GT(cv::norm(labelled, frame, cv::NORM_L1), 0.0);
 }
 
+// An uncertain pose (above pose.max_predicted_error_px) is not drawn as if exact: no vertex dot
+// and no edge of the cube's colour, but the thin grey cube still changes the image.
+TEST_F(OverlayCompositorTest, AnUncertainPoseDrawsTheCubeDimmed) {
+  OverlayCompositor compositor;
+  OverlaySettings settings;
+  settings.showLabels = false;
+  const cv::Mat frame = sim_->renderFrame(0);
+  TrackingResult exact;
+  exact.worldToCamera = sim_->framePose(0);
+  TrackingResult uncertain = exact;
+  uncertain.uncertain = true;
+  const cv::Mat drawn = compositor.composite(frame, sim_->camera(), exact, settings);
+  const cv::Mat dimmed = compositor.composite(frame, sim_->camera(), uncertain, settings);
+  // Pixels (changed from the frame) of the cube's edge colour or of a vertex colour.
+  const auto coloured = [&](const cv::Mat& out) {
+    std::vector<cv::Scalar> colours = {render::WireframeCubeStyle{}.colourBgr};
+    for (const cv::Scalar& c : render::WireframeCube::vertexColoursBgr()) colours.push_back(c);
+    int n = 0;
+    for (int y = 0; y < out.rows; ++y)
+      for (int x = 0; x < out.cols; ++x) {
+        const cv::Vec3b a = out.at<cv::Vec3b>(y, x);
+        if (a == frame.at<cv::Vec3b>(y, x)) continue;
+        for (const cv::Scalar& c : colours) {
+          bool match = true;
+          for (int k = 0; k < 3; ++k) match &= std::abs(a[k] - c[k]) <= 30;
+          if (match) {
+            ++n;
+            break;
+          }
+        }
+      }
+    return n;
+  };
+  EXPECT_GT(coloured(drawn), 500);
+  EXPECT_LT(coloured(dimmed), 20);
+  EXPECT_GT(cv::norm(dimmed, frame, cv::NORM_L1), 0.0);
+  EXPECT_LT(cv::norm(dimmed, frame, cv::NORM_L1), 0.5 * cv::norm(drawn, frame, cv::NORM_L1));
+}
+
 TEST_F(OverlayCompositorTest, DebugLayersFollowTheirSwitches) {
   OverlayCompositor compositor;
   const cv::Mat frame = sim_->renderFrame(0);

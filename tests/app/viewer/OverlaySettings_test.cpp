@@ -6,6 +6,7 @@
 #include "ErrorMessage.hpp"
 #include "engine/config/ConfigFile.hpp"
 #include "engine/core/Error.hpp"
+#include "render/WireframeCube.hpp"
 
 using namespace reftrack;
 using namespace reftrack::app;
@@ -17,6 +18,22 @@ TEST(OverlaySettings, CubeStandsOnTheOffset) {
   const Eigen::Matrix4d T = s.cubeModelToWorld();
   EXPECT_TRUE((T.topLeftCorner<3, 3>().isIdentity()));
   EXPECT_TRUE((T.topRightCorner<3, 1>().isApprox(Eigen::Vector3d(1, 2, 3.1))));
+}
+
+// The predicted overlay error's object is the drawn cube: the renderer's own vertices.
+TEST(OverlaySettings, CubeWorldVerticesAreTheDrawnCubes) {
+  OverlaySettings s;
+  s.size = 0.2;
+  s.offset = Eigen::Vector3d(0.16, -0.1, 0.0);
+  render::WireframeCubeStyle style;
+  style.edgeLength = s.size;
+  style.modelToWorld = s.cubeModelToWorld();
+  const auto drawn = render::WireframeCube::worldVertices(style);
+  const std::vector<Eigen::Vector3d> vertices = s.cubeWorldVertices();
+  ASSERT_EQ(vertices.size(), 8u);
+  for (int i = 0; i < 8; ++i) EXPECT_LT((vertices[i] - drawn[i]).norm(), 1e-12) << i;
+  EXPECT_NEAR(vertices[0].z(), 0.0, 1e-12);  // standing on the offset
+  EXPECT_NEAR(vertices[7].z(), 0.2, 1e-12);
 }
 
 TEST(OverlaySettings, RoundTripsThroughYaml) {

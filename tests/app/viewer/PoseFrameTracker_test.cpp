@@ -34,6 +34,31 @@ TEST(PoseFrameTracker, ReportsPoseTimingsAndConsistentDebugLayers) {
   EXPECT_LT(distances[distances.size() / 2], 1.0);
 }
 
+// The predicted overlay error of the object the viewer draws; above pose.max_predicted_error_px
+// the status is "uncertain: <why>" and the pose is still given (drawn dimmed).
+TEST(PoseFrameTracker, ReportsThePredictedErrorAndUncertainFrames) {
+  const test::PlaneWorld world;
+  TrackerParams params;
+  params.pose.maxPredictedErrorPx = 1e-4;
+  PoseFrameTracker tracker(world.map(), params);
+  const std::vector<Eigen::Vector3d> cube = {{0, 0, 0}, {0.05, 0, 0}, {0, 0.05, 0}, {0, 0, 0.05}};
+  tracker.setOverlayPoints(cube);
+  EXPECT_EQ(tracker.tracker().overlayPoints(), cube);
+  TrackingResult r;
+  for (int k = 0; k < 3; ++k) r = tracker.process(world.render(test::pathPose(k), k), k, k / 30.0);
+  ASSERT_TRUE(r.worldToCamera.has_value()) << r.status;
+  ASSERT_TRUE(r.predictedErrorPx.has_value());
+  EXPECT_GT(*r.predictedErrorPx, 1e-4);
+  EXPECT_TRUE(r.uncertain);
+  EXPECT_EQ(r.status.rfind("uncertain: predicted overlay error", 0), 0u) << r.status;
+  params.pose.maxPredictedErrorPx = 0.0;  // off
+  tracker.applyParams(params);
+  r = tracker.process(world.render(test::pathPose(3), 3), 3, 3 / 30.0);
+  EXPECT_FALSE(r.uncertain);
+  EXPECT_EQ(r.status, "tracking");
+  EXPECT_TRUE(r.predictedErrorPx.has_value());
+}
+
 TEST(PoseFrameTracker, ABlackFrameIsReportedLostWithItsReason) {
   const test::PlaneWorld world;
   PoseFrameTracker tracker(world.map(), TrackerParams{});

@@ -1,4 +1,4 @@
-// StatsHistory: bounded history, mean loop rate and pose series with gaps.
+// StatsHistory: bounded history, mean loop rate, pose and overlay-error series with gaps.
 #include "app/viewer/StatsHistory.hpp"
 
 #include <gtest/gtest.h>
@@ -36,4 +36,26 @@ TEST(StatsHistory, KeepsTheLastFramesAndComputesSeries) {
   EXPECT_THROW(StatsHistory(0), Error);
   h.clear();
   EXPECT_DOUBLE_EQ(h.meanFps(), 0.0);
+}
+
+TEST(StatsHistory, OverlayErrorSeriesHaveGapsWhereThereIsNoFigure) {
+  StatsHistory h(4);
+  EXPECT_FALSE(h.groundTruthLoaded());
+  h.setGroundTruthLoaded(true);
+  EXPECT_TRUE(h.groundTruthLoaded());
+  for (int k = 0; k < 4; ++k) {
+    FrameStats s;
+    s.index = k;
+    if (k != 1) s.predictedErrorPx = 0.5 * k;
+    if (k == 2) s.trueErrorPx = 0.75;
+    h.add(s);
+  }
+  const std::vector<float> predicted = h.predictedErrorSeries(), measured = h.trueErrorSeries();
+  ASSERT_EQ(predicted.size(), 4u);
+  EXPECT_FLOAT_EQ(predicted[0], 0.0f);
+  EXPECT_TRUE(std::isnan(predicted[1]));
+  EXPECT_FLOAT_EQ(predicted[3], 1.5f);
+  ASSERT_EQ(measured.size(), 4u);
+  EXPECT_TRUE(std::isnan(measured[0]));
+  EXPECT_FLOAT_EQ(measured[2], 0.75f);
 }

@@ -1,6 +1,7 @@
 // runViewer headless: one recorded frame per processed frame, a replayed trajectory written back
-// unchanged, screenshots of the canvas, clean errors before any output is written, and live
-// calibration (auto-capture, calibrate, camera.yml) end to end.
+// unchanged, screenshots of the canvas, clean errors before any output is written, live
+// calibration (auto-capture, calibrate, camera.yml) end to end, and the overlay error predicted
+// and measured against ground truth.
 #include "app/viewer/ViewerApp.hpp"
 
 #include <gtest/gtest.h>
@@ -11,9 +12,12 @@
 #include "TestPaths.hpp"
 #include "app/simulator/SceneSimulator.hpp"
 #include "app/simulator/SimulationWriter.hpp"
+#include "app/sources/SimulatorSource.hpp"
+#include "app/viewer/TrajectoryReplayTracker.hpp"
 #include "engine/calibration/SyntheticBoardViews.hpp"
 #include "engine/core/Error.hpp"
 #include "engine/geometry/TumTrajectory.hpp"
+#include "engine/tracking/PredictedOverlayError.hpp"
 
 using namespace reftrack;
 using namespace reftrack::app;
@@ -249,4 +253,67 @@ TEST(ViewerApp, TheReferencesPanelShowsAThumbnailOfEveryReference) {
   EXPECT_GT(pixelsOf(rightColumn, {0, 0, 255}), 90 * 66);
   EXPECT_GT(pixelsOf(rightColumn, {255, 0, 0}), 90 * 66);
   EXPECT_EQ(pixelsOf(shot(cv::Rect(0, 0, 330, shot.rows)), {0, 0, 255}), 0);
+}
+
+namespace {
+
+// Replays the simulator's true poses moved 2 mm sideways (camera x) and reports a predicted
+// error of 1.25 px; records the true error of the cube it was given (the drawn one) per frame.
+class ShiftedTruthTracker : public FrameTracker {
+ public:
+  ShiftedTruthTracker(const PinholeCamera& camera, TumTrajectory truth,
+                      std::shared_ptr<std::vector<double>> trueErrors)
+      : camera_(camera), truth_(std::move(truth), 30.0), trueErrors_(std::move(trueErrors)) {}
+  TrackingResult process(const cv::Mat& frame, int index, double timestamp) override {
+    TrackingResult r = truth_.process(frame, index, timestamp);
+    const RigidPose shift(Eigen::Matrix3d::Identity(), Eigen::Vector3d(0.002, 0, 0));
+    const RigidPose truth = *r.worldToCamera;
+    r.worldToCamera = shift * truth;
+    r.predictedErrorPx = 1.25;
+    trueErrors_->push_back(*overlayErrorPx(camera_, truth, *r.worldToCamera, points_));
+    return r;
+  }
+  void applyParams(const TrackerParams&) override {}
+  std::string name() const override { return "shifted truth"; }
+  void setOverlayPoints(const std::vector<Eigen::Vector3d>& worldPoints) override {
+    points_ = worldPoints;
+  }
+
+ private:
+  PinholeCamera camera_;
+  TrajectoryReplayTracker truth_;
+  std::shared_ptr<std::vector<double>> trueErrors_;
+  std::vector<Eigen::Vector3d> points_;
+};
+
+}  // namespace
+
+// A live tracker on a sim: input: the simulator's ground truth is loaded beside it, and the run
+// reports the mean predicted error the tracker gave and the mean true error of the drawn cube
+// (the Stats panel's two curves), the tracker having been given that cube's vertices.
+TEST(ViewerApp, WithGroundTruthTheTrueOverlayErrorIsMeasuredBesideThePredictedOne) {
+  ViewerOptions o = simOptions(6);
+  o.cubeSize = 0.05;
+  auto trueErrors = std::make_shared<std::vector<double>>();
+  o.makeTracker = [&](const PinholeCamera& camera, const TrackerParams&) {
+    SimulationOptions sim;
+    sim.preset = "orbit";
+    sim.frames = o.source.simFrames;
+    sim.size = o.source.simSize;
+    return std::unique_ptr<FrameTracker>(std::make_unique<ShiftedTruthTracker>(
+        camera, SimulatorSource(sim).groundTruth(), trueErrors));
+  };
+  const ViewerRunSummary s = runViewer(o);
+  ASSERT_EQ(trueErrors->size(), 6u);
+  EXPECT_EQ(s.predictedErrorFrames, 6);
+  EXPECT_DOUBLE_EQ(s.predictedErrorMeanPx, 1.25);
+  EXPECT_EQ(s.trueErrorFrames, 6);
+  double mean = 0.0;
+  for (double e : *trueErrors) mean += e / 6.0;
+  EXPECT_GT(mean, 0.05);  // 2 mm at the orbit's distance: a fraction of a pixel at 160x120
+  EXPECT_NEAR(s.trueErrorMeanPx, mean, 1e-9 * mean);
+  // Without a live tracker (the simulator's truth replayed) there is nothing to compare.
+  const ViewerRunSummary replay = runViewer(simOptions(3));
+  EXPECT_EQ(replay.trueErrorFrames, 0);
+  EXPECT_EQ(replay.predictedErrorFrames, 0);
 }

@@ -15,6 +15,7 @@
 #include "engine/relocalisation/Relocaliser.hpp"
 #include "engine/tracking/MultiReferenceTracker.hpp"
 #include "engine/tracking/PlaneMultiWorld.hpp"
+#include "engine/tracking/PredictedOverlayError.hpp"
 
 namespace reftrack {
 namespace {
@@ -156,6 +157,77 @@ TEST(Tracker, RelocalisesReportsLostFramesAndResets) {
   EXPECT_NE(again.state, Tracker::State::Tracking);
   EXPECT_THROW(tracker.track(cv::Mat(240, 320, CV_8UC3, cv::Scalar::all(0))), Error);
   EXPECT_THROW(tracker.track(cv::Mat()), Error);
+}
+
+// pose.max_predicted_error_px: with a limit below every frame's predicted overlay error each
+// tracked frame is Uncertain (pose, covariance and prediction given, the reason names the limit)
+// and the tracker goes on from it — the same poses frame by frame as with a limit never reached,
+// which leaves the frames Tracking. The prediction follows the overlay points it is given, and on
+// exact ground truth it is of the size of the true error or above it (see below).
+TEST(Tracker, AFrameAboveThePredictedErrorLimitIsUncertainAndTrackingGoesOn) {
+  const SavedMap saved("api_tracker_uncertain");
+  TrackerParams low, high;
+  low.pose.maxPredictedErrorPx = 1e-4;
+  high.pose.maxPredictedErrorPx = 1e6;
+  Tracker uncertain = Tracker::openMap(saved.folder, low);
+  Tracker tracking = Tracker::openMap(saved.folder, high);
+  // A 5 cm cube on the plane in front of reference A (the world is the plane's frame: A's frame
+  // carried by T_A).
+  const RigidPose T_A = saved.world.T_A;
+  std::vector<Eigen::Vector3d> cube;
+  for (int i = 0; i < 8; ++i)
+    cube.push_back(T_A.inverse() * Eigen::Vector3d(i & 1 ? 0.025 : -0.025, i & 2 ? 0.025 : -0.025,
+                                                   i & 4 ? 0.95 : 1.0));
+  uncertain.setOverlayPoints(cube);
+  tracking.setOverlayPoints(cube);
+  // Another object (4 times the size, farther out) on a third tracker over the same frames.
+  std::vector<Eigen::Vector3d> larger;
+  for (const Eigen::Vector3d& X : cube)
+    larger.push_back(T_A.inverse() * (Eigen::Vector3d(0.05, 0.0, 0.9) + 4.0 * (T_A * X)));
+  Tracker other = Tracker::openMap(saved.folder, high);
+  other.setOverlayPoints(larger);
+  const PinholeCamera camera(saved.world.K, saved.world.size);
+  std::vector<double> ratios;
+  for (int k = 0; k < 12; ++k) {
+    const RigidPose fromA = PlaneMultiWorld::cameraAlong(-0.2 + 0.012 * k, k);
+    const cv::Mat frame = saved.world.render(fromA, 700 + k);
+    const Tracker::Result u = uncertain.track(frame);
+    const Tracker::Result t = tracking.track(frame);
+    ASSERT_EQ(t.state, Tracker::State::Tracking) << k << ": " << t.reason;
+    ASSERT_EQ(u.state, Tracker::State::Uncertain) << k << ": " << u.reason;
+    EXPECT_STREQ(toString(u.state), "uncertain");
+    EXPECT_NE(u.reason.find("> pose.max_predicted_error_px 0.0001"), std::string::npos) << u.reason;
+    ASSERT_TRUE(u.worldToCamera && u.covariance && u.predictedErrorPx && t.predictedErrorPx) << k;
+    EXPECT_LT(translationErrorMm(*u.worldToCamera, *t.worldToCamera), 1e-9) << k;
+    EXPECT_DOUBLE_EQ(*u.predictedErrorPx, *t.predictedErrorPx) << k;
+    EXPECT_GT(*t.predictedErrorPx, 1e-4) << k;
+    // The objects' predictions are in the ratio of the world covariance's for their points (the
+    // same figures to first order as from Omega_k in camera A's frame; the frame's a-posteriori
+    // factor and the calibration are common to both).
+    const Tracker::Result o = other.track(frame);
+    ASSERT_TRUE(o.predictedErrorPx) << k;
+    const double want = *predictedOverlayErrorPx(camera, *t.worldToCamera, *t.covariance, larger) /
+                        *predictedOverlayErrorPx(camera, *t.worldToCamera, *t.covariance, cube);
+    EXPECT_NEAR(*o.predictedErrorPx / *t.predictedErrorPx, want, 1e-6 * want) << k;
+    EXPECT_GT(std::abs(want - 1.0), 0.1) << k;  // the objects differ
+    const std::optional<double> trueError =
+        overlayErrorPx(camera, saved.world.worldToCamera(fromA), *t.worldToCamera, cube);
+    ratios.push_back(*trueError / *t.predictedErrorPx);
+  }
+  std::sort(ratios.begin(), ratios.end());
+  const double median = ratios[ratios.size() / 2];
+  // Measured 0.34: on this exact map the errors are the frames' corner noise, which the temporal
+  // prior averages out while the prediction (rescaled by the matches alone and calibrated on real
+  // clips, whose errors are shared by all frames) does not credit it — conservative. Three times
+  // lower, or above the band (1.6), the prediction would be broken.
+  EXPECT_GT(median, 0.1);
+  EXPECT_LT(median, 1.6);
+  RecordProperty("median_true_over_predicted", std::to_string(median));
+  // Homography mode has no pose covariance to predict from.
+  const std::filesystem::path dir = test::freshTempDir("api_tracker_uncertain_homography");
+  ASSERT_TRUE(cv::imwrite((dir / "reference.png").string(), test::texturedImage({320, 240}, 32)));
+  Tracker homography = Tracker::openReference(dir / "reference.png");
+  EXPECT_THROW(homography.setOverlayPoints(cube), Error);
 }
 
 // Rotation-only camera (any scene): frame k = the reference through H_k = K R_k K^-1.

@@ -28,6 +28,10 @@ TEST(PoseParams, DefaultsAndRoundTrip) {
   in.mapPointSdScale = 0.0;
   EXPECT_DOUBLE_EQ(in.reliabilityPriorObservations, 2.0);  // learned reliability on (README)
   in.reliabilityPriorObservations = 0.0;
+  EXPECT_DOUBLE_EQ(in.predictedErrorScale, 1.7);  // measured on the real clips
+  EXPECT_DOUBLE_EQ(in.maxPredictedErrorPx, 2.0);  // chosen on the real clips
+  in.predictedErrorScale = 1.5;
+  in.maxPredictedErrorPx = 0.0;
   PoseParams out;
   roundTrip(in, out);
   EXPECT_EQ(out.estimator, PoseEstimatorKind::Standard);
@@ -40,6 +44,8 @@ TEST(PoseParams, DefaultsAndRoundTrip) {
   EXPECT_TRUE(out.estimateRollingShutter);
   EXPECT_DOUBLE_EQ(out.mapPointSdScale, 0.0);
   EXPECT_DOUBLE_EQ(out.reliabilityPriorObservations, 0.0);
+  EXPECT_DOUBLE_EQ(out.predictedErrorScale, 1.5);
+  EXPECT_DOUBLE_EQ(out.maxPredictedErrorPx, 0.0);
 }
 
 TEST(PoseParams, EveryBadFieldIsNamed) {
@@ -57,6 +63,10 @@ TEST(PoseParams, EveryBadFieldIsNamed) {
        [](PoseParams& p) { p.reliabilityPriorObservations = -1.0; }},
       {"pose.reliability_prior_observations",
        [&](PoseParams& p) { p.reliabilityPriorObservations = nan; }},
+      {"pose.predicted_error_scale", [](PoseParams& p) { p.predictedErrorScale = 0.0; }},
+      {"pose.predicted_error_scale", [&](PoseParams& p) { p.predictedErrorScale = nan; }},
+      {"pose.max_predicted_error_px", [](PoseParams& p) { p.maxPredictedErrorPx = -1.0; }},
+      {"pose.max_predicted_error_px", [&](PoseParams& p) { p.maxPredictedErrorPx = nan; }},
   };
   for (const auto& [field, mutate] : cases) {
     PoseParams p;

@@ -47,6 +47,8 @@ GroundTruthBenchmarkResult smallResult() {
             run("SIFT+PnP", "sequence", {0.5, 12.0, 1.0, 0.7}, {80, 80, 80, 80}),
             run("SIFT+PnP", "shuffled", {0.5, 12.0, 1.0, 0.7}, {90, 90, 90, 90}),
             run("ORB+PnP", "sequence", {INFINITY, 0.3, NAN, NAN}, {50, 50, 50, 50})};
+  r.runs[0].predictedErrorPx = {0.2, 0.4, NAN, NAN};  // reftrack's prediction (sequence order)
+  r.runs[0].uncertain = {false, false, false, false};
   r.runs[0].noPose["lost"] = 1;
   r.runs[1].noPose["relocalisation: not enough support"] = 1;
   r.seconds = 12.5;
@@ -101,6 +103,12 @@ TEST(GroundTruthBenchmarkReport, TableHasARowPerMethodAndOrder) {
   EXPECT_NE(table.find("no pose, reftrack shuffled: 1 x relocalisation: not enough support"),
             std::string::npos);
   EXPECT_NE(table.find("order seed 7"), std::string::npos);
+  // The predicted error's calibration line: predictions 0.2 and 0.4, the true errors as large.
+  EXPECT_NE(table.find("predicted cube error, reftrack sequence (issue 32): median 0.300, p95 "
+                       "0.390, max 0.400 px over 2 frames; true / predicted median 1.00"),
+            std::string::npos)
+      << table;
+  EXPECT_EQ(table.find("predicted cube error, reftrack shuffled"), std::string::npos);
   // A pose with the cube behind the camera: wrong, and named, but not in the mean.
   EXPECT_NE(table.find("ORB+PnP         sequence       3       2   66.7    0.300"),
             std::string::npos)
@@ -201,9 +209,9 @@ TEST(GroundTruthBenchmarkReport, WritesTableCsvAndPlotIntoTheFolder) {
   ASSERT_EQ(csv.size(), 5u);
   EXPECT_EQ(csv[0],
             "frame,true_pose,reftrack_sequence_px,reftrack_shuffled_px,sift_pnp_sequence_px,"
-            "sift_pnp_shuffled_px,orb_pnp_sequence_px");
-  EXPECT_EQ(csv[1], "0,1,0.2,,0.5,0.5,inf");
-  EXPECT_EQ(csv[4], "3,0,,,0.7,0.7,");
+            "sift_pnp_shuffled_px,orb_pnp_sequence_px,reftrack_sequence_predicted_px");
+  EXPECT_EQ(csv[1], "0,1,0.2,,0.5,0.5,inf,0.2");
+  EXPECT_EQ(csv[4], "3,0,,,0.7,0.7,,");
   const cv::Mat plot = cv::imread(files.plot.string());
   ASSERT_FALSE(plot.empty());
   EXPECT_EQ(plot.size(), cv::Size(1200, 600));

@@ -275,6 +275,26 @@ TEST(GroundTruthBenchmark, CutsAndStridePlayOneSequence) {
     if (k % 3 != 0) {
       EXPECT_TRUE(std::isnan(stride.errorPx[static_cast<std::size_t>(k)])) << k;
     }
+
+// The predicted error's calibration over the posed frames with a true pose and a prediction:
+// true / predicted quartiles, the predictions' median / p95 / max, the frames reported uncertain
+// (their mean true error), and the frames more than 5 px off that were not.
+TEST(GroundTruthBenchmark, PredictionSummaryComparesTrueWithPredictedErrors) {
+  MethodRun run;
+  run.errorPx = {0.4, 0.3, NAN, 9.0, 0.2, 0.6, 8.0};
+  run.predictedErrorPx = {0.2, 0.3, NAN, 3.0, 0.4, NAN, 2.0};
+  run.uncertain = {false, false, false, true, false, false, false};
+  const std::vector<bool> truth = {true, true, true, true, false, true, true};
+  const PredictionSummary p = summarisePrediction(run, truth);
+  EXPECT_EQ(p.frames, 4);  // frames 0, 1, 3, 6 (4: no truth, 5: no prediction, 2: no pose)
+  // Ratios 2, 1, 3, 4: median at 1.5 of 0..3 -> 2.5.
+  EXPECT_DOUBLE_EQ(p.ratioMedian, 2.5);
+  EXPECT_DOUBLE_EQ(p.predictedMedianPx, 1.15);  // sorted 0.2 0.3 2 3: at 1.5
+  EXPECT_DOUBLE_EQ(p.predictedMaxPx, 3.0);
+  EXPECT_EQ(p.uncertain, 1);
+  EXPECT_DOUBLE_EQ(p.uncertainTrueMeanPx, 9.0);
+  EXPECT_EQ(p.wrongNotUncertain, 1);  // frame 6: 8 px off, not flagged
+  EXPECT_EQ(summarisePrediction(MethodRun{}, truth).frames, 0);
 }
 
 TEST(GroundTruthBenchmark, OptionsCheckNamesTheBadOption) {
@@ -400,6 +420,17 @@ TEST(GroundTruthBenchmark, SimulatedClipErrorsOfReftrackAndAPeer) {
     EXPECT_LT(sum.meanPx, 0.5) << run.method << " " << run.order.name;
     EXPECT_LT(sum.maxPx, 1.5) << run.method << " " << run.order.name;
     EXPECT_EQ(sum.wrong, 0);
+  }
+  // reftrack's predicted cube error for every posed frame, none for the peer; the calibration
+  // on the simulator is printed (measured: see the commit).
+  for (std::size_t k = 0; k < 30; ++k) {
+    EXPECT_EQ(std::isnan(r.runs[0].predictedErrorPx[k]), !r.runs[0].poses[k]) << k;
+    EXPECT_TRUE(std::isnan(r.runs[2].predictedErrorPx[k])) << k;
+  }
+  for (const MethodRun& run : {r.runs[0], r.runs[1]}) {
+    const PredictionSummary p = summarisePrediction(run, r.truth);
+    std::printf("reftrack %s: predicted cube error median %.3f px, true / predicted median %.2f\n",
+                run.order.name.c_str(), p.predictedMedianPx, p.ratioMedian);
   }
   // The peer keeps nothing between frames: the same pose for a frame in either order.
   for (std::size_t k = 0; k < 30; ++k)
