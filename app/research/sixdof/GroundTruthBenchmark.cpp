@@ -100,6 +100,7 @@ std::vector<CutRecovery> cutRecoveries(const MethodRun& run) {
     recoveries.push_back(r);
   }
   return recoveries;
+}
 
 PredictionSummary summarisePrediction(const MethodRun& run, const std::vector<bool>& truth) {
   PredictionSummary s;
@@ -264,7 +265,8 @@ void playFrames(PoseMethod& method, const GroundTruthSequence& s,
     run.cpuMs.push_back(threadCpuMs() - cpu0);
     if (!score) continue;
     run.poses[frame] = pose;
-    if (frame < run.predictedErrorPx.size()) run.predictedErrorPx[frame] = method.predictedErrorPx();
+    if (frame < run.predictedErrorPx.size())
+      run.predictedErrorPx[frame] = method.predictedErrorPx();
     if (frame < run.uncertain.size()) run.uncertain[frame] = method.uncertain();
     const std::optional<RigidPose>& truth = s.truth[frame];
     if (!truth) continue;

@@ -171,11 +171,10 @@ std::string groundTruthBenchmarkTable(const GroundTruthBenchmarkResult& r) {
         "predicted cube error, %s %s (issue 32): median %s, p95 %s, max %s px over %d frames; "
         "true / predicted median %s (quartiles %s-%s); uncertain %d (their true error mean %s "
         "px); >5px and not uncertain %d\n",
-        run.method.c_str(), run.order.name.c_str(),
-        cell(p.predictedMedianPx, 3).c_str(), cell(p.predictedP95Px, 3).c_str(),
-        cell(p.predictedMaxPx, 3).c_str(), p.frames, cell(p.ratioMedian, 2).c_str(),
-        cell(p.ratioP25, 2).c_str(), cell(p.ratioP75, 2).c_str(), p.uncertain,
-        cell(p.uncertainTrueMeanPx, 2).c_str(), p.wrongNotUncertain);
+        run.method.c_str(), run.order.name.c_str(), cell(p.predictedMedianPx, 3).c_str(),
+        cell(p.predictedP95Px, 3).c_str(), cell(p.predictedMaxPx, 3).c_str(), p.frames,
+        cell(p.ratioMedian, 2).c_str(), cell(p.ratioP25, 2).c_str(), cell(p.ratioP75, 2).c_str(),
+        p.uncertain, cell(p.uncertainTrueMeanPx, 2).c_str(), p.wrongNotUncertain);
   }
   for (const MethodRun& run : r.runs)
     for (const auto& [reason, frames] : run.noPose)

@@ -319,3 +319,54 @@ TEST(MultiReferenceTracker, AFrameOfTheWrongSizeIsAClearError) {
 
 }  // namespace
 }  // namespace reftrack
+
+namespace reftrack {
+namespace {
+
+// Abrupt changes of view without a reset (issue 32): tracking near reference 0, then a cut to an
+// unrelated view (another texture: no pose, never a wrong one), then a cut to the scene seen from
+// elsewhere (near reference 3, rolled): the same frame is relocalised to the right pose. And a
+// cut straight from tracking to that far view. Tolerances as above (2 mm / 0.1 degree).
+TEST(MultiReferenceTracker, CutsToAnUnrelatedViewAndToTheSceneFromElsewhere) {
+  const PlaneMultiWorld world = fourReferences();
+  const MultiReferenceMap map = withKeypoints(world);
+  const RigidPose far = world.worldToCamera(rolledNearReferenceThree());
+  for (const bool viaUnrelated : {true, false}) {
+    MultiReferenceTracker tracker(map, TrackerParams{});
+    for (int k = 0; k < 8; ++k) {
+      const RigidPose truthFromA = PlaneMultiWorld::cameraAlong(-0.29 + 0.005 * k, k);
+      const MultiReferenceResult r = tracker.process(world.render(truthFromA, 300 + k));
+      ASSERT_EQ(r.tracking.state, TrackingState::Tracking) << k << ": " << r.tracking.message;
+    }
+    if (viaUnrelated) {
+      cv::Mat other = test::texturedImage(world.size, 77);
+      const MultiReferenceResult r = tracker.process(other);
+      EXPECT_NE(r.tracking.state, TrackingState::Tracking) << "a pose on an unrelated view";
+      EXPECT_FALSE(r.tracking.worldToCamera.has_value());
+      EXPECT_FALSE(r.tracking.message.empty());
+    }
+    const MultiReferenceResult r = tracker.process(world.render(rolledNearReferenceThree(), 600));
+    ASSERT_EQ(r.tracking.state, TrackingState::Tracking)
+        << r.tracking.message << " | " << r.relocalisation.message;
+    EXPECT_LT(translationErrorMm(*r.tracking.worldToCamera, far), 2.0);
+    EXPECT_LT(rotationErrorDeg(*r.tracking.worldToCamera, far), 0.1);
+  }
+}
+
+// The check of every pose (PoseVerifier) confirms a true pose: most of the distinctive points it
+// could check correlate where the pose puts them.
+TEST(MultiReferenceTracker, TheCheckOfEveryPoseConfirmsATruePose) {
+  const PlaneMultiWorld world = fourReferences();
+  PoseTracker tracker(world.map().pair(0, 1), TrackerParams{});
+  const RigidPose truthFromA = PlaneMultiWorld::cameraAlong(-0.25, 3);
+  const RigidPose truth = world.worldToCamera(truthFromA);
+  const cv::Mat frame = world.render(truthFromA, 42);
+  tracker.seed(truth);
+  PoseTrackingResult r = tracker.process(frame);
+  ASSERT_EQ(r.state, TrackingState::Tracking) << r.message;
+  EXPECT_GE(r.verifyConfirmed, TrackerParams{}.pose.verifyMinPoints);
+  EXPECT_GE(r.verifyConfirmed, 0.5 * r.verifyCheckable);  // measured: nearly all confirm
+}
+
+}  // namespace
+}  // namespace reftrack
