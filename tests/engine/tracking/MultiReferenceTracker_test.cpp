@@ -264,8 +264,9 @@ TEST(MultiReferenceTracker, RelocalisesAfterBlackFramesOnTheFirstClearFrame) {
       EXPECT_FALSE(r.relocalisation.succeeded);
       blackAttempts += r.relocalisation.attempted ? 1 : 0;
     }
-    // The first black frame only loses tracking; the six after it try to recover.
-    EXPECT_EQ(blackAttempts, every == 1 ? 6 : 2) << every;
+    // A frame lost from the last pose goes on to the recovery on the same frame (issue 32), so
+    // every black frame tries to recover: all seven, or every third (measured: 3 of 7).
+    EXPECT_EQ(blackAttempts, every == 1 ? 7 : 3) << every;
     EXPECT_EQ(tracker.relocalisationAttempts() - attemptsBefore, blackAttempts);
     // The clear frame after them gets its pose at once: this view is near the references, so the
     // paper's start (tried first on every frame) finds it before an attempt is needed.
