@@ -4,7 +4,8 @@
 # tests/fuzz/corpus/<target>/. Prints the executions, their rate and the slowest input of the
 # corpus it grew (each replayed once afterwards: ms in the instrumented build) per target; exits 1
 # on any crash, hang
-# (> 1 s per input) or leak, leaving the input in $build/artifacts/<target>/.
+# (> 1 s per input) or leak, leaving the input in $build/artifacts/<target>/ and printing the end
+# of the log and the input (base64) on stderr, so a CI log shows what failed.
 # Usage: scripts/fuzz.sh [SECONDS] [TARGET...]   (REFTRACK_FUZZ_BUILD_DIR, default build-fuzz;
 # REFTRACK_FUZZ_RUNS=N stops each target after N executions, e.g. `REFTRACK_FUZZ_RUNS=1000000
 # scripts/fuzz.sh 0 fuzz_camera_file` with no time limit; REFTRACK_FUZZ_TIMEOUT=S (default 1)
@@ -60,6 +61,16 @@ for target in "${targets[@]}"; do
 done
 
 if [ ${#failed[@]} -ne 0 ]; then
+  # The report of each failure where CI shows it (the logs stay in the build folder).
+  for target in "${failed[@]}"; do
+    echo "---- $target: the end of $build/$target.log" >&2
+    grep -v -E '^#[0-9]+[[:space:]]+(NEW|REDUCE|pulse|INITED)' "$build/$target.log" | tail -n 40 >&2
+    for input in "$build/artifacts/${target#fuzz_}"/*; do
+      [ -f "$input" ] || continue
+      echo "---- $target: the input $input (first 2 kB, base64)" >&2
+      head -c 2048 "$input" | base64 >&2
+    done
+  done
   echo "fuzz: ${#failed[@]} target(s) failed: ${failed[*]}" >&2
   exit 1
 fi

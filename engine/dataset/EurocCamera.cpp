@@ -65,7 +65,9 @@ std::vector<StampedImageFile> readFrameList(const fs::path& folder) {
     if (!frames.empty() && ns <= previous)
       throw Error(where + ": timestamp " + stamp + " does not increase");
     const fs::path file = folder / "data" / name;
-    if (!fs::is_regular_file(file))
+    std::error_code
+        unreadable;  // a name the file system refuses (too long, ...) does not exist either
+    if (!fs::is_regular_file(file, unreadable))
       throw Error(where + ": image '" + file.string() + "' does not exist");
     previous = ns;
     frames.push_back({static_cast<double>(ns) * 1e-9, file});

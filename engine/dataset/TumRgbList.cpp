@@ -32,7 +32,8 @@ std::vector<StampedImageFile> readTumRgbList(const std::filesystem::path& dir) {
     if (!frames.empty() && !(t > frames.back().timestamp))
       throw Error(where + ": timestamp " + stamp + " does not increase");
     const std::filesystem::path file = dir / name;
-    if (!std::filesystem::is_regular_file(file))
+    std::error_code ec;  // a name the file system refuses (too long, ...) does not exist either
+    if (!std::filesystem::is_regular_file(file, ec))
       throw Error(where + ": image '" + file.string() + "' does not exist");
     frames.push_back({t, file});
   });

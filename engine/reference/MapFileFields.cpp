@@ -147,8 +147,12 @@ std::vector<ReferenceCorner> MapFieldReader::readCorners(const YamlNode& parent,
 
 cv::Mat MapFieldReader::readImage(const std::string& fileName, const std::string& name) const {
   const std::filesystem::path path = folder_ / fileName;
-  if (!std::filesystem::exists(path))
-    throw Error(where_ + ": reference image '" + path.string() + "' (" + name + ") is missing");
+  // The name comes from the file: one the file system refuses (too long, ...) is missing too.
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw Error(where_ + ": reference image '" + path.string() + "' (" + name + ") is missing" +
+                (ec && ec != std::errc::no_such_file_or_directory ? " (" + ec.message() + ")"
+                                                                  : std::string()));
   cv::Mat image = cv::imread(path.string(), cv::IMREAD_UNCHANGED);
   if (image.empty())
     throw Error(where_ + ": reference image '" + path.string() + "' cannot be read");

@@ -8,8 +8,10 @@
 // with the frame's windows resampled for one of a few distance ratios per frame (a start from
 // farther away or nearer than the reference, along about its line of sight). Never reports a pose
 // without enough inlier support (count, residual RMS, covariance and PoseSupport's reprojection SD,
-// which rejects black, textureless and heavily blurred frames): the frame is `Lost` instead, with
-// the reason.
+// which rejects black, textureless and heavily blurred frames), nor one its check (PoseVerifier)
+// refutes: the frame is `Lost` instead, with the reason. A pose that moved the scene farther than
+// the wide-baseline search since the last frame (a jump), or that came from a seed's wide search,
+// is matched once more around itself on the same frame, and that pass gives the frame's pose.
 #include <functional>
 #include <memory>
 #include <optional>
@@ -97,12 +99,16 @@ class PoseTracker {
   void seed(const RigidPose& worldToCamera);
   // The rolling-shutter readout in use (pose.rolling_shutter_readout, or its online estimate).
   double rollingShutterReadout() const;
-  // A second opinion on a pose that its check (PoseVerifier) did not confirm: given the frame, the
-  // pose (world -> camera) and whether the check was unsure (else it refuted the pose), nullopt
-  // accepts it, else the reason to refuse it. Without one such a pose is refused
-  // (MultiReferenceTracker asks its relocaliser).
-  using PoseConfirmation = std::function<std::optional<std::string>(
-      const cv::Mat& frame, const RigidPose& pose, bool unsure)>;
+  // A pose that its check (PoseVerifier) did not confirm, as a second opinion sees it.
+  struct PoseInDoubt {
+    RigidPose worldToCamera;
+    bool unsure = false;     // the check was unsure (else it refuted the pose)
+    bool trackedOn = false;  // tracked on from the last frame's pose (not a seed, not a jump)
+  };
+  // A second opinion on such a pose, given the frame: nullopt accepts it, else the reason to
+  // refuse it. Without one such a pose is refused (MultiReferenceTracker asks its relocaliser).
+  using PoseConfirmation =
+      std::function<std::optional<std::string>(const cv::Mat& frame, const PoseInDoubt& pose)>;
   void setPoseConfirmation(PoseConfirmation confirmation);
   // More scene points for the check of every pose than the map's corner points: the references'
   // keypoints with a 3D point (world frame; pixels as detected in A, resp. B).

@@ -11,6 +11,7 @@
 
 #include "engine/config/ResolutionScale.hpp"
 #include "engine/core/Error.hpp"
+#include "engine/geometry/AffineFit.hpp"
 #include "engine/tracking/WarpedCorrelation.hpp"
 
 namespace reftrack {
@@ -38,34 +39,6 @@ std::vector<std::vector<int>> nearestNeighbours(const std::vector<cv::Point2f>& 
     for (std::size_t j = 0; j < take; ++j) out[i].push_back(byDistance[j].second);
   }
   return out;
-}
-
-// Least-squares affine map reference -> frame through the pairs; false when they are too few or
-// nearly collinear (their spread across their line under ~1 px).
-bool fitAffine(const std::vector<cv::Point2d>& src, const std::vector<cv::Point2d>& dst,
-               cv::Matx33d& A) {
-  if (src.size() < 3) return false;
-  cv::Point2d mean(0, 0);
-  for (const cv::Point2d& p : src) mean += p;
-  mean *= 1.0 / static_cast<double>(src.size());
-  Eigen::Matrix3d AtA = Eigen::Matrix3d::Zero();
-  Eigen::Matrix<double, 3, 2> Atb = Eigen::Matrix<double, 3, 2>::Zero();
-  for (std::size_t i = 0; i < src.size(); ++i) {
-    const Eigen::Vector3d a(src[i].x - mean.x, src[i].y - mean.y, 1.0);
-    AtA += a * a.transpose();
-    Atb.col(0) += a * dst[i].x;
-    Atb.col(1) += a * dst[i].y;
-  }
-  const double sxx = AtA(0, 0), syy = AtA(1, 1), sxy = AtA(0, 1);
-  if (0.5 * (sxx + syy) - std::sqrt(0.25 * (sxx - syy) * (sxx - syy) + sxy * sxy) < 1.0)
-    return false;
-  const Eigen::Matrix<double, 3, 2> X = AtA.ldlt().solve(Atb);
-  const double a11 = X(0, 0), a12 = X(1, 0), a21 = X(0, 1), a22 = X(1, 1);
-  const double det = a11 * a22 - a12 * a21;
-  if (!std::isfinite(det) || std::abs(det) < 1e-3 || std::abs(det) > 1e3) return false;
-  A = cv::Matx33d(a11, a12, X(2, 0) - a11 * mean.x - a12 * mean.y, a21, a22,
-                  X(2, 1) - a21 * mean.x - a22 * mean.y, 0, 0, 1);
-  return true;
 }
 
 // The best NCC of `warped` (zero-mean, unit-norm, side x side) with the frame's side x side
@@ -200,7 +173,12 @@ PoseCheck PoseVerifier::check(const cv::Mat& gray8, const RigidPose& T_Ak) const
       dst.push_back(q);
     }
     cv::Matx33d referenceToK;
-    if (!fitAffine(src, dst, referenceToK)) continue;
+    const auto pairAt = [&](int j) {
+      const auto k = static_cast<std::size_t>(j);
+      return std::pair<cv::Point2d, cv::Point2d>(src[k], dst[k]);
+    };
+    if (fitAffine(static_cast<int>(src.size()), pairAt, referenceToK) != AffineFit::Fitted)
+      continue;
     const cv::Matx33d W = referenceToK.inv();  // frame -> reference
     // The frame is read at whole pixels: the reference window is sampled where W puts the whole
     // pixel nearest the projection.

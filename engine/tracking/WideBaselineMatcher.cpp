@@ -10,6 +10,7 @@
 #include "engine/config/ResolutionScale.hpp"
 #include "engine/core/Error.hpp"
 #include "engine/features/CornerDetector.hpp"
+#include "engine/geometry/AffineFit.hpp"
 #include "engine/tracking/WarpedCorrelation.hpp"
 
 namespace reftrack {
@@ -108,36 +109,13 @@ bool fitLocalAffine(cv::Point2d p, const std::vector<cv::Point2f>& src,
     for (; sorted < count; ++sorted)
       std::iter_swap(byDistance.begin() + sorted,
                      std::min_element(byDistance.begin() + sorted, byDistance.end()));
-    // Centred on the pairs' mean for conditioning; 3x3 normal equations (fixed size).
-    cv::Point2d mean(0, 0);
-    for (int j = 0; j < count; ++j)
-      mean += cv::Point2d(
-          src[static_cast<std::size_t>(byDistance[static_cast<std::size_t>(j)].second)]);
-    mean *= 1.0 / count;
-    Eigen::Matrix3d AtA = Eigen::Matrix3d::Zero();
-    Eigen::Matrix<double, 3, 2> Atb = Eigen::Matrix<double, 3, 2>::Zero();
-    for (int j = 0; j < count; ++j) {
-      const std::size_t i =
-          static_cast<std::size_t>(byDistance[static_cast<std::size_t>(j)].second);
-      const Eigen::Vector3d a(src[i].x - mean.x, src[i].y - mean.y, 1.0);
-      AtA += a * a.transpose();
-      Atb.col(0) += a * dst[i].x;
-      Atb.col(1) += a * dst[i].y;
-    }
-    // Collinear (or coincident) neighbours: the spread across their line is below ~1 px. The
-    // smaller eigenvalue of the symmetric 2x2 block, in closed form.
-    const double sxx = AtA(0, 0), syy = AtA(1, 1), sxy = AtA(0, 1);
-    const double minSpread =
-        0.5 * (sxx + syy) - std::sqrt(0.25 * (sxx - syy) * (sxx - syy) + sxy * sxy);
-    if (minSpread < 1.0) continue;
-    const Eigen::Matrix<double, 3, 2> X = AtA.ldlt().solve(Atb);  // [a11 a21; a12 a22; tx ty]
-    const double a11 = X(0, 0), a12 = X(1, 0), a21 = X(0, 1), a22 = X(1, 1);
-    const double tx = X(2, 0) - a11 * mean.x - a12 * mean.y;
-    const double ty = X(2, 1) - a21 * mean.x - a22 * mean.y;
-    const double det = a11 * a22 - a12 * a21;
-    if (!std::isfinite(det) || std::abs(det) < 1e-3 || std::abs(det) > 1e3) return false;
-    L = cv::Matx33d(a11, a12, tx, a21, a22, ty, 0, 0, 1);
-    return true;
+    const auto pairAt = [&](int j) {
+      const auto i = static_cast<std::size_t>(byDistance[static_cast<std::size_t>(j)].second);
+      return std::pair<cv::Point2f, cv::Point2f>(src[i], dst[i]);
+    };
+    const AffineFit fit = fitAffine(count, pairAt, L);
+    if (fit == AffineFit::Collinear || fit == AffineFit::TooFew) continue;  // try more pairs
+    return fit == AffineFit::Fitted;
   }
   return false;
 }

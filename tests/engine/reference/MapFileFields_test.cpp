@@ -107,6 +107,12 @@ TEST(MapFileFields, ReadsImagesBesideTheMapAndNamesTheMissingOne) {
   EXPECT_EQ(test::errorMessage([&] { read.readImage("b.png", "views[1].name"); }),
             std::string(kWhere) + ": reference image '" + (dir / "b.png").string() +
                 "' (views[1].name) is missing");
+  // A name the file system refuses (longer than NAME_MAX) is missing too, not a
+  // std::filesystem_error: the fuzzer found it in a mangled map.yml.
+  const std::string tooLong(300, 'r');
+  EXPECT_EQ(test::errorMessage([&] { read.readImage(tooLong, "reference_a"); }),
+            std::string(kWhere) + ": reference image '" + (dir / tooLong).string() +
+                "' (reference_a) is missing (File name too long)");
 }
 
 TEST(MapFileFields, CheckCornersNamesTheCorner) {

@@ -17,6 +17,8 @@
 #include <opencv2/imgcodecs.hpp>
 #include <optional>
 #include <random>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "TestPaths.hpp"
@@ -198,25 +200,36 @@ TEST_F(MultiReferenceTrackerRealFootage, StartsAPeriodOffOnTheChessboardAreRefus
 }
 
 // Abrupt changes of view, played as one sequence without a reset (issue 32): the clip shuffled
-// (every frame a jump), and cut into 8 segments played in a shuffled order. Before every pose was
-// checked (PoseVerifier), the shuffled clip gave 243 poses more than 5 px off and the cut clip 150
-// (3 cuts never re-acquired). Bounds: no pose more than 5 px off; shuffled >= 380 of 400 within
-// 1.5 px (measured 385); every cut re-acquired within 1 frame (measured: on its first frame).
+// (every frame a jump) in two orders, and cut into 8 segments played in a shuffled order. Before
+// every pose was checked (PoseVerifier), the shuffled clip gave 243 poses more than 5 px off and
+// the cut clip 150 (3 cuts never re-acquired); with the check alone, 1 pose 5-9 px off per
+// shuffled order (order 4: 9.1 px), which the match around the pose after a jump removed.
+// Bounds: no pose more than 5 px off; shuffled >= 380 of 400 within 1.5 px (measured 388 and 393,
+// every pose within 1.2 px); every cut re-acquired within 1 frame (measured: on its first frame).
 TEST_F(MultiReferenceTrackerRealFootage, AbruptChangesOfViewGiveNoWrongPose) {
-  std::vector<int> shuffled(400);
-  std::iota(shuffled.begin(), shuffled.end(), 0);
-  std::mt19937_64 rng(1);
-  std::shuffle(shuffled.begin(), shuffled.end(), rng);
+  std::vector<int> inOrder(400);
+  std::iota(inOrder.begin(), inOrder.end(), 0);
+  const auto shuffledWith = [&](std::uint64_t seed) {
+    std::vector<int> order = inOrder;
+    std::mt19937_64 rng(seed);
+    std::shuffle(order.begin(), order.end(), rng);
+    return order;
+  };
+  std::mt19937_64 rng(1);  // the segments' order: as drawn after the 400 frames' shuffle
+  std::vector<int> discarded = inOrder;
+  std::shuffle(discarded.begin(), discarded.end(), rng);
   std::vector<int> segments = {0, 1, 2, 3, 4, 5, 6, 7};
   std::shuffle(segments.begin(), segments.end(), rng);
   std::vector<int> cut;
   for (int s : segments)
     for (int k = 50 * s; k < 50 * s + 50; ++k) cut.push_back(k);
-  for (const bool isCut : {false, true}) {
+  const std::vector<std::pair<std::string, std::vector<int>>> orders = {
+      {"shuffled (seed 1)", shuffledWith(1)}, {"shuffled (seed 4)", shuffledWith(4)}, {"cut", cut}};
+  for (const auto& [name, order] : orders) {
+    const bool isCut = name == "cut";
     MultiReferenceTracker tracker(clip_->map, TrackerParams{});
     int wrong = 0, good = 0, worstReacquire = 0, sinceCut = 0;
     bool reacquired = true;
-    const std::vector<int>& order = isCut ? cut : shuffled;
     for (std::size_t i = 0; i < order.size(); ++i) {
       if (isCut && i % 50 == 0) {
         if (!reacquired) worstReacquire = 50;
@@ -227,8 +240,8 @@ TEST_F(MultiReferenceTrackerRealFootage, AbruptChangesOfViewGiveNoWrongPose) {
       const MultiReferenceResult r = tracker.process(clip_->frames[static_cast<std::size_t>(k)]);
       const double e =
           r.tracking.worldToCamera ? clip_->cubeError(k, *r.tracking.worldToCamera) : NAN;
-      EXPECT_FALSE(e > 5.0) << (isCut ? "cut" : "shuffled") << " position " << i << ", frame " << k
-                            << ": " << e << " px off (" << r.tracking.message << ")";
+      EXPECT_FALSE(e > 5.0) << name << " position " << i << ", frame " << k << ": " << e
+                            << " px off (" << r.tracking.message << ")";
       wrong += e > 5.0 ? 1 : 0;
       good += e <= 1.5 ? 1 : 0;
       if (!reacquired && e <= 1.5) {
@@ -238,7 +251,7 @@ TEST_F(MultiReferenceTrackerRealFootage, AbruptChangesOfViewGiveNoWrongPose) {
       ++sinceCut;
     }
     std::printf("%s: %d within 1.5 px, %d more than 5 px off, worst re-acquisition %d frames\n",
-                isCut ? "cut in 8" : "shuffled", good, wrong, worstReacquire);
+                name.c_str(), good, wrong, worstReacquire);
     EXPECT_EQ(wrong, 0);
     if (isCut) {
       EXPECT_LE(worstReacquire, 1);

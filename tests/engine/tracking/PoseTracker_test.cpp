@@ -55,6 +55,29 @@ TEST(PoseTracker, BlackAndTexturelessFramesAreLostAndRecoveryFollows) {
   EXPECT_EQ(back.state, TrackingState::Tracking) << back.message;
 }
 
+// A jump the frame-to-frame step still follows (the camera turned ~5 degrees between two frames:
+// the scene moves ~45 px, beyond the wide-baseline search of 20 px at 640x480): the pose is
+// matched again around itself on the same frame (PoseTracker step 9a), as exact as in smooth
+// tracking. Tolerances as in TracksAMovingCameraAgainstExactGroundTruth (2 mm / 0.1 degree).
+TEST(PoseTracker, AJumpIsMatchedAgainAroundItsOwnPose) {
+  const PlaneWorld world;
+  PoseTracker tracker(world.map(), TrackerParams{});
+  for (int k = 0; k <= 4; ++k)
+    ASSERT_EQ(tracker.process(world.render(pathPose(k), 300 + k)).state, TrackingState::Tracking);
+  const RigidPose turn = RigidPose::fromVector6((Vector6d() << 0, 0, 0, 0.02, 0.08, 0).finished());
+  const RigidPose truth = turn * pathPose(5);
+  const PoseTrackingResult r = tracker.process(world.render(truth, 305));
+  ASSERT_EQ(r.state, TrackingState::Tracking) << r.message;
+  EXPECT_NE(r.message.find("after a jump"), std::string::npos) << r.message;
+  EXPECT_LT(RigidPose::translationDistance(*r.T_Ak, truth), 0.002);
+  EXPECT_LT(RigidPose::rotationDistance(*r.T_Ak, truth) * 180.0 / CV_PI, 0.1);
+  // Tracking goes on from it as from any frame.
+  const PoseTrackingResult next = tracker.process(world.render(turn * pathPose(6), 306));
+  ASSERT_EQ(next.state, TrackingState::Tracking) << next.message;
+  EXPECT_EQ(next.message, "tracking");
+  EXPECT_LT(RigidPose::translationDistance(*next.T_Ak, turn * pathPose(6)), 0.002);
+}
+
 // Worst image displacement (pixels) of the vertices of a 10 cm cube about 1 m in front of camera
 // A between the estimated and the true T_Ak: the error a user sees on drawn 3D content.
 double cubeVertexErrorPx(const PlaneWorld& world, const RigidPose& estimate,
