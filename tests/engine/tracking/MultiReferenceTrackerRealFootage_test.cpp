@@ -1,16 +1,21 @@
-// MultiReferenceTracker on real footage with true poses: the shared desk clip
-// (../shared/data/desk-chessboard: 400 hand-held 752x480 frames of a desk with a chessboard, a
-// wide-angle calibrated lens, per-frame poses from the board good to ~0.2 px). The map is
-// prepared from frames 0 and 40 with their true poses, as `reftrack prepare --input frames
-// --ref-frames 0,40 --poses groundtruth.txt` does, with the default parameters; the score is the
-// dataset's: a 10 cm cube standing on the board at (0.16, -0.10, 0), its 8 vertices projected with
-// K alone, mean pixel distance between the estimated and the true pose. Skipped (with a message)
-// where ../shared/data is absent, e.g. in a fresh clone.
+// MultiReferenceTracker on real footage with true poses (skipped, with a message, where
+// ../shared/data is absent, e.g. in a fresh clone):
+// - the desk clip (../shared/data/desk-chessboard: 400 hand-held 752x480 frames of a desk with a
+//   chessboard, a wide-angle calibrated lens, per-frame poses from the board good to ~0.2 px);
+//   score: a 10 cm cube standing on the board at (0.16, -0.10, 0);
+// - the shelf clip (../shared/data/shelf-apriltags: 210 undistorted 752x480 frames of a shelf
+//   corner with AprilTag sheets, poses from 12 tag corners per frame, good to a few tenths of a
+//   pixel); score: a 5 cm cube whose base is centred at (0.1, 0.2, -0.12).
+// The map is prepared from two frames with their true poses, as `reftrack prepare --input frames
+// --ref-frames a,b --poses groundtruth.txt` does, with the default parameters; the score is the
+// cube's 8 vertices projected with K alone, mean pixel distance between the estimated and the
+// true pose (as `bench-real --cube-centre --cube-edge` scores it).
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <memory>
 #include <numeric>
@@ -31,21 +36,27 @@
 namespace reftrack {
 namespace {
 
-struct DeskClip {
+// A clip of ../shared/data with its true poses and the map of two of its frames.
+struct RealClip {
   PinholeCamera camera;
   std::vector<cv::Mat> frames;
   std::vector<RigidPose> truth;  // world -> camera, per frame
   MultiReferenceMap map;
+  Eigen::Vector3d cubeBase;  // centre of the scoring cube's base (world, m); it extends to +z
+  double cubeEdge = 0.1;
 
-  static std::optional<DeskClip> load() {
+  // `folder` of ../shared/data, its first `count` frames (NNNNNN.jpg at index / 30 s), the map of
+  // frames a and b; nullopt when absent.
+  static std::optional<RealClip> load(const std::string& folder, int count, int a, int b,
+                                      const Eigen::Vector3d& cubeBase, double cubeEdge) {
     const std::optional<std::filesystem::path> data = test::sharedDataDir();
     if (!data) return std::nullopt;
-    const std::filesystem::path dir = *data / "desk-chessboard";
+    const std::filesystem::path dir = *data / folder;
     if (!std::filesystem::exists(dir / "groundtruth.txt")) return std::nullopt;
-    DeskClip clip;
+    RealClip clip;
     clip.camera = PinholeCamera::load(dir / "camera.yml");
     const TumTrajectory gt = TumTrajectory::load(dir / "groundtruth.txt");
-    for (int i = 0; i < 400; ++i) {
+    for (int i = 0; i < count; ++i) {
       char name[32];
       std::snprintf(name, sizeof name, "%06d.jpg", i);
       cv::Mat frame = cv::imread((dir / "frames" / name).string(), cv::IMREAD_GRAYSCALE);
@@ -54,7 +65,9 @@ struct DeskClip {
       clip.frames.push_back(frame);
       clip.truth.push_back(*pose);
     }
-    clip.map = clip.mapFrom(0, 40);
+    clip.cubeBase = cubeBase;
+    clip.cubeEdge = cubeEdge;
+    clip.map = clip.mapFrom(a, b);
     return clip;
   }
 
@@ -70,11 +83,11 @@ struct DeskClip {
 
   // The dataset's score: the cube's vertices through K alone (no lens), mean distance (pixels).
   double cubeError(int frame, const RigidPose& estimate) const {
-    const Eigen::Vector3d centre(0.16, -0.10, 0.0);
+    const double h = 0.5 * cubeEdge;
     double sum = 0.0;
     for (int v = 0; v < 8; ++v) {
-      const Eigen::Vector3d X = centre + Eigen::Vector3d((v & 1) ? 0.05 : -0.05,
-                                                         (v & 2) ? 0.05 : -0.05, (v & 4) ? 0.1 : 0);
+      const Eigen::Vector3d X =
+          cubeBase + Eigen::Vector3d((v & 1) ? h : -h, (v & 2) ? h : -h, (v & 4) ? cubeEdge : 0);
       sum += (camera.project(estimate * X) -
               camera.project(truth[static_cast<std::size_t>(frame)] * X))
                  .norm();
@@ -82,6 +95,13 @@ struct DeskClip {
     return sum / 8.0;
   }
 };
+
+std::optional<RealClip> loadDesk() {
+  return RealClip::load("desk-chessboard", 400, 0, 40, Eigen::Vector3d(0.16, -0.10, 0.0), 0.1);
+}
+std::optional<RealClip> loadShelf() {
+  return RealClip::load("shelf-apriltags", 210, 0, 60, Eigen::Vector3d(0.1, 0.2, -0.12), 0.05);
+}
 
 double percentile(std::vector<double> v, double q) {
   std::sort(v.begin(), v.end());
@@ -91,7 +111,7 @@ double percentile(std::vector<double> v, double q) {
 class MultiReferenceTrackerRealFootage : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    if (std::optional<DeskClip> c = DeskClip::load()) clip_ = new DeskClip(std::move(*c));
+    if (std::optional<RealClip> c = loadDesk()) clip_ = new RealClip(std::move(*c));
   }
   static void TearDownTestSuite() {
     delete clip_;
@@ -101,9 +121,9 @@ class MultiReferenceTrackerRealFootage : public ::testing::Test {
     if (clip_ == nullptr)
       GTEST_SKIP() << "../shared/data/desk-chessboard not available (the shared real recordings)";
   }
-  static DeskClip* clip_;
+  static RealClip* clip_;
 };
-DeskClip* MultiReferenceTrackerRealFootage::clip_ = nullptr;
+RealClip* MultiReferenceTrackerRealFootage::clip_ = nullptr;
 
 // The clip starts at reference 0: the paper's start near a reference gives the first frame its
 // pose (before issue 24 the relocaliser took every frame and none was tracked). 0.5 px: the
@@ -199,64 +219,150 @@ TEST_F(MultiReferenceTrackerRealFootage, StartsAPeriodOffOnTheChessboardAreRefus
   EXPECT_GE(posed, 1);  // not refused wholesale: the right starts get through (measured: all 9)
 }
 
-// Abrupt changes of view, played as one sequence without a reset (issue 32): the clip shuffled
-// (every frame a jump) in two orders, and cut into 8 segments played in a shuffled order. Before
-// every pose was checked (PoseVerifier), the shuffled clip gave 243 poses more than 5 px off and
-// the cut clip 150 (3 cuts never re-acquired); with the check alone, 1 pose 5-9 px off per
-// shuffled order (order 4: 9.1 px), which the match around the pose after a jump removed.
-// Bounds: no pose more than 5 px off; shuffled >= 380 of 400 within 1.5 px (measured 388 and 393,
-// every pose within 1.2 px); every cut re-acquired within 1 frame (measured: on its first frame).
-TEST_F(MultiReferenceTrackerRealFootage, AbruptChangesOfViewGiveNoWrongPose) {
-  std::vector<int> inOrder(400);
+// Orders of a clip's frames played as one sequence without a reset (abrupt changes of view): the
+// frames shuffled (every frame a jump), or cut into 8 segments played in a shuffled order (as
+// `bench-real --order shuffled-sequence,cuts:8` plays them; the segments' order here is the draw
+// after the frames' shuffle).
+struct AbruptOrder {
+  std::string name;
+  std::vector<int> frames;
+  int segment = 0;  // > 0: cut into segments of this many frames
+};
+std::vector<AbruptOrder> abruptOrders(int count, const std::vector<std::uint64_t>& seeds) {
+  std::vector<int> inOrder(static_cast<std::size_t>(count));
   std::iota(inOrder.begin(), inOrder.end(), 0);
-  const auto shuffledWith = [&](std::uint64_t seed) {
+  std::vector<AbruptOrder> orders;
+  for (std::uint64_t seed : seeds) {
     std::vector<int> order = inOrder;
     std::mt19937_64 rng(seed);
     std::shuffle(order.begin(), order.end(), rng);
-    return order;
-  };
-  std::mt19937_64 rng(1);  // the segments' order: as drawn after the 400 frames' shuffle
+    orders.push_back({"shuffled (seed " + std::to_string(seed) + ")", order, 0});
+  }
+  std::mt19937_64 rng(1);  // the segments' order: as drawn after the frames' shuffle
   std::vector<int> discarded = inOrder;
   std::shuffle(discarded.begin(), discarded.end(), rng);
   std::vector<int> segments = {0, 1, 2, 3, 4, 5, 6, 7};
   std::shuffle(segments.begin(), segments.end(), rng);
-  std::vector<int> cut;
+  const int length = count / 8;
+  AbruptOrder cut{"cut", {}, length};
   for (int s : segments)
-    for (int k = 50 * s; k < 50 * s + 50; ++k) cut.push_back(k);
-  const std::vector<std::pair<std::string, std::vector<int>>> orders = {
-      {"shuffled (seed 1)", shuffledWith(1)}, {"shuffled (seed 4)", shuffledWith(4)}, {"cut", cut}};
-  for (const auto& [name, order] : orders) {
-    const bool isCut = name == "cut";
-    MultiReferenceTracker tracker(clip_->map, TrackerParams{});
-    int wrong = 0, good = 0, worstReacquire = 0, sinceCut = 0;
-    bool reacquired = true;
-    for (std::size_t i = 0; i < order.size(); ++i) {
-      if (isCut && i % 50 == 0) {
-        if (!reacquired) worstReacquire = 50;
-        reacquired = false;
-        sinceCut = 0;
-      }
-      const int k = order[i];
-      const MultiReferenceResult r = tracker.process(clip_->frames[static_cast<std::size_t>(k)]);
-      const double e =
-          r.tracking.worldToCamera ? clip_->cubeError(k, *r.tracking.worldToCamera) : NAN;
-      EXPECT_FALSE(e > 5.0) << name << " position " << i << ", frame " << k << ": " << e
-                            << " px off (" << r.tracking.message << ")";
-      wrong += e > 5.0 ? 1 : 0;
-      good += e <= 1.5 ? 1 : 0;
-      if (!reacquired && e <= 1.5) {
-        reacquired = true;
-        worstReacquire = std::max(worstReacquire, sinceCut);
-      }
-      ++sinceCut;
+    for (int k = length * s; k < length * s + length; ++k) cut.frames.push_back(k);
+  orders.push_back(cut);
+  return orders;
+}
+
+struct AbruptScore {
+  int posed = 0, good = 0, wrong = 0;  // posed; within 1.5 px; more than 5 px off
+  int worstReacquire = 0;              // frames after a cut until one within 1.5 px (cuts only)
+  double maxError = 0.0;               // px, over the posed frames
+};
+AbruptScore playAbrupt(const RealClip& clip, const AbruptOrder& order) {
+  MultiReferenceTracker tracker(clip.map, TrackerParams{});
+  AbruptScore score;
+  int sinceCut = 0;
+  bool reacquired = true;
+  for (std::size_t i = 0; i < order.frames.size(); ++i) {
+    if (order.segment > 0 && i % static_cast<std::size_t>(order.segment) == 0) {
+      if (!reacquired) score.worstReacquire = order.segment;
+      reacquired = false;
+      sinceCut = 0;
     }
-    std::printf("%s: %d within 1.5 px, %d more than 5 px off, worst re-acquisition %d frames\n",
-                name.c_str(), good, wrong, worstReacquire);
-    EXPECT_EQ(wrong, 0);
-    if (isCut) {
-      EXPECT_LE(worstReacquire, 1);
+    const int k = order.frames[i];
+    const MultiReferenceResult r = tracker.process(clip.frames[static_cast<std::size_t>(k)]);
+    if (!r.tracking.worldToCamera) {
+      ++sinceCut;
+      continue;
+    }
+    const double e = clip.cubeError(k, *r.tracking.worldToCamera);
+    EXPECT_FALSE(e > 5.0) << order.name << " position " << i << ", frame " << k << ": " << e
+                          << " px off (" << r.tracking.message << ")";
+    ++score.posed;
+    score.wrong += e > 5.0 ? 1 : 0;
+    score.good += e <= 1.5 ? 1 : 0;
+    score.maxError = std::max(score.maxError, e);
+    if (!reacquired && e <= 1.5) {
+      reacquired = true;
+      score.worstReacquire = std::max(score.worstReacquire, sinceCut);
+    }
+    ++sinceCut;
+  }
+  if (!reacquired) score.worstReacquire = order.segment;
+  std::printf(
+      "%s: %d posed, %d within 1.5 px, %d more than 5 px off, max %.2f px, worst "
+      "re-acquisition %d frames\n",
+      order.name.c_str(), score.posed, score.good, score.wrong, score.maxError,
+      score.worstReacquire);
+  return score;
+}
+
+// The desk's abrupt changes of view (issue 32), in two shuffled orders and cut in 8. Before every
+// pose was checked (PoseVerifier), the shuffled clip gave 243 poses more than 5 px off and the
+// cut clip 150 (3 cuts never re-acquired); with the check alone, 1 pose 5-9 px off in most
+// shuffled orders (seed 4: 9.1 px), which the match around the pose after a jump removed.
+// Bounds: no pose more than 5 px off; shuffled >= 380 of 400 within 1.5 px (measured 388 and 393,
+// every pose within 1.2 px); every cut re-acquired within 1 frame (measured: on its first frame).
+TEST_F(MultiReferenceTrackerRealFootage, AbruptChangesOfViewGiveNoWrongPose) {
+  for (const AbruptOrder& order : abruptOrders(400, {1, 4})) {
+    const AbruptScore score = playAbrupt(*clip_, order);
+    EXPECT_EQ(score.wrong, 0) << order.name;
+    if (order.segment > 0) {
+      EXPECT_LE(score.worstReacquire, 1);
     } else {
-      EXPECT_GE(good, 380);
+      EXPECT_GE(score.good, 380) << order.name;
+    }
+  }
+}
+
+// The shelf clip (references 0 and 60), as the desk's above: a scene of little texture besides
+// printed tags, three planes seen at changing angles, a 5 cm cube.
+class MultiReferenceTrackerShelf : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    if (std::optional<RealClip> c = loadShelf()) clip_ = new RealClip(std::move(*c));
+  }
+  static void TearDownTestSuite() {
+    delete clip_;
+    clip_ = nullptr;
+  }
+  void SetUp() override {
+    if (clip_ == nullptr)
+      GTEST_SKIP() << "../shared/data/shelf-apriltags not available (the shared real recordings)";
+  }
+  static RealClip* clip_;
+};
+RealClip* MultiReferenceTrackerShelf::clip_ = nullptr;
+
+// In order with the default parameters: every frame tracked; measured mean 0.182, p95 0.353, max
+// 0.56 px (per-frame SIFT+PnP 0.185, AKAZE 0.181 from the same references). Bounds: all 210
+// frames; mean <= 0.19 px (0.01 of room for other CPUs' float paths, as the desk's), p95 <= 0.4,
+// max < 0.8 px (the truth itself is good to a few tenths of a pixel).
+TEST_F(MultiReferenceTrackerShelf, TracksTheWholeClipWithinTheBounds) {
+  MultiReferenceTracker tracker(clip_->map, TrackerParams{});
+  std::vector<double> errors;
+  for (int i = 0; i < static_cast<int>(clip_->frames.size()); ++i) {
+    const MultiReferenceResult r = tracker.process(clip_->frames[static_cast<std::size_t>(i)]);
+    ASSERT_TRUE(r.tracking.worldToCamera.has_value())
+        << "frame " << i << ": " << r.tracking.message;
+    errors.push_back(clip_->cubeError(i, *r.tracking.worldToCamera));
+  }
+  const double mean =
+      std::accumulate(errors.begin(), errors.end(), 0.0) / static_cast<double>(errors.size());
+  EXPECT_LE(mean, 0.19);
+  EXPECT_LE(percentile(errors, 0.95), 0.4);
+  EXPECT_LT(*std::max_element(errors.begin(), errors.end()), 0.8);
+  RecordProperty("cube_error_mean_px", std::to_string(mean));
+}
+
+// Shuffled (two orders) and cut in 8, one sequence each: measured every frame posed, all within
+// 0.6 px, every cut on its first frame. Bounds: no pose more than 5 px off, >= 205 of 210 posed
+// within 1.5 px, every cut re-acquired within 1 frame.
+TEST_F(MultiReferenceTrackerShelf, AbruptChangesOfViewGiveNoWrongPose) {
+  for (const AbruptOrder& order : abruptOrders(210, {1, 3})) {
+    const AbruptScore score = playAbrupt(*clip_, order);
+    EXPECT_EQ(score.wrong, 0) << order.name;
+    EXPECT_GE(score.good, 205) << order.name;
+    if (order.segment > 0) {
+      EXPECT_LE(score.worstReacquire, 1);
     }
   }
 }
