@@ -4,17 +4,27 @@
 // coverage, mean / p95 / max cube error, poses more than 5 px off and within 1.5 px, median thread
 // CPU per frame and its ratio to reftrack's in the same order; for cuts:N a line per method with
 // each cut's frames to re-acquire and wrong poses; then why frames got no pose), a CSV of every
-// frame's cube error per method and order, and a PNG of the first order's errors per frame.
+// frame's cube error per method and order, and a PNG of the first order's errors per frame:
+// reftrack's beside the best peer's.
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include "app/research/sixdof/GroundTruthBenchmark.hpp"
 
 namespace reftrack::app {
 
-// Errors above this are drawn at it in the plot (the CSV keeps them), so sub-pixel differences
-// stay visible beside a peer's outliers.
-inline constexpr double kPlotErrorCapPx = 10.0;
+// The plot draws errors above its cap at the cap (the CSV keeps them), so sub-pixel differences
+// stay visible beside a peer's outliers: 1.5 x the larger p95 of the two runs drawn, rounded up
+// to a whole pixel, within these.
+inline constexpr double kPlotErrorCapMinPx = 2.0;
+inline constexpr double kPlotErrorCapMaxPx = 10.0;
+
+// The best peer in `order` (index into result.runs), nullopt when no other method ran there: of
+// the peers that posed at least 90% of the scored frames the one with the lowest mean cube error,
+// else the one that posed the most.
+std::optional<std::size_t> bestPeerRun(const GroundTruthBenchmarkResult& result,
+                                       const std::string& order);
 
 std::string groundTruthBenchmarkTable(const GroundTruthBenchmarkResult& result);
 

@@ -221,6 +221,21 @@ TEST(GroundTruthBenchmarkReport, WritesTableCsvAndPlotIntoTheFolder) {
   EXPECT_EQ(entries, 3);
 }
 
+// The plot's peer: SIFT posed all 3 scored frames (mean 4.5 px, one 12 px pose), ORB 2 of 3 (one
+// behind the camera): SIFT. An ORB that poses every frame more precisely is the better one.
+TEST(GroundTruthBenchmarkReport, TheBestPeerIsTheMostAccurateOfThoseThatPoseNearlyEveryFrame) {
+  GroundTruthBenchmarkResult r = smallResult();
+  EXPECT_EQ(bestPeerRun(r, "sequence"), std::optional<std::size_t>(2));
+  EXPECT_EQ(bestPeerRun(r, "shuffled"), std::optional<std::size_t>(3));
+  EXPECT_EQ(bestPeerRun(r, "stride:2"), std::nullopt);
+  r.runs[4].errorPx = {0.3, 0.3, 0.4, NAN};
+  EXPECT_EQ(bestPeerRun(r, "sequence"), std::optional<std::size_t>(4));
+  // None near full coverage: the one that posed the most.
+  r.runs[2].errorPx = {0.5, NAN, NAN, NAN};
+  r.runs[4].errorPx = {0.3, 0.3, NAN, NAN};
+  EXPECT_EQ(bestPeerRun(r, "sequence"), std::optional<std::size_t>(4));
+}
+
 TEST(GroundTruthBenchmarkReport, AnUnusableFolderIsAnError) {
   const auto dir = test::freshTempDir("GroundTruthBenchmarkReportBad");
   std::ofstream(dir / "file") << "x";
