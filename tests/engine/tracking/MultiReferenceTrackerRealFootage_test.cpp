@@ -108,10 +108,12 @@ double percentile(std::vector<double> v, double q) {
   return v.empty() ? NAN : v[static_cast<std::size_t>(q * static_cast<double>(v.size() - 1) + 0.5)];
 }
 
-class MultiReferenceTrackerRealFootage : public ::testing::Test {
+// The tests of one clip: loaded once for the suite, each test skipped (with a message) without it.
+template <class Clip>
+class RealClipSuite : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    if (std::optional<RealClip> c = loadDesk()) clip_ = new RealClip(std::move(*c));
+    if (std::optional<RealClip> c = Clip::load()) clip_ = new RealClip(std::move(*c));
   }
   static void TearDownTestSuite() {
     delete clip_;
@@ -119,11 +121,20 @@ class MultiReferenceTrackerRealFootage : public ::testing::Test {
   }
   void SetUp() override {
     if (clip_ == nullptr)
-      GTEST_SKIP() << "../shared/data/desk-chessboard not available (the shared real recordings)";
+      GTEST_SKIP() << "../shared/data/" << Clip::kFolder
+                   << " not available (the shared real recordings)";
   }
-  static RealClip* clip_;
+  static inline RealClip* clip_ = nullptr;
 };
-RealClip* MultiReferenceTrackerRealFootage::clip_ = nullptr;
+struct Desk {
+  static constexpr const char* kFolder = "desk-chessboard";
+  static std::optional<RealClip> load() { return loadDesk(); }
+};
+struct Shelf {
+  static constexpr const char* kFolder = "shelf-apriltags";
+  static std::optional<RealClip> load() { return loadShelf(); }
+};
+using MultiReferenceTrackerRealFootage = RealClipSuite<Desk>;
 
 // The clip starts at reference 0: the paper's start near a reference gives the first frame its
 // pose (before issue 24 the relocaliser took every frame and none was tracked). 0.5 px: the
@@ -315,22 +326,7 @@ TEST_F(MultiReferenceTrackerRealFootage, AbruptChangesOfViewGiveNoWrongPose) {
 
 // The shelf clip (references 0 and 60), as the desk's above: a scene of little texture besides
 // printed tags, three planes seen at changing angles, a 5 cm cube.
-class MultiReferenceTrackerShelf : public ::testing::Test {
- protected:
-  static void SetUpTestSuite() {
-    if (std::optional<RealClip> c = loadShelf()) clip_ = new RealClip(std::move(*c));
-  }
-  static void TearDownTestSuite() {
-    delete clip_;
-    clip_ = nullptr;
-  }
-  void SetUp() override {
-    if (clip_ == nullptr)
-      GTEST_SKIP() << "../shared/data/shelf-apriltags not available (the shared real recordings)";
-  }
-  static RealClip* clip_;
-};
-RealClip* MultiReferenceTrackerShelf::clip_ = nullptr;
+using MultiReferenceTrackerShelf = RealClipSuite<Shelf>;
 
 // In order with the default parameters: every frame tracked; measured mean 0.182, p95 0.353, max
 // 0.56 px (per-frame SIFT+PnP 0.185, AKAZE 0.181 from the same references). Bounds: all 210
