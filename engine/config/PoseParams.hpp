@@ -57,14 +57,13 @@ struct PoseParams : ParamSection<PoseParams> {
   // Every pose is checked before it is reported, whatever produced it (PoseVerifier): at the
   // distinctive map points it projects into the frame, the reference windows warped by the pose
   // must correlate with the frame. It needs this many of them confirmed (0 turns the check off)
-  // and this share of those it could check. A pose short of that is confirmed by the map's
-  // keypoint layer when there is one (relocalisation.min_keypoint_support / agreement of the
-  // frame's ratio-test keypoint matches agree with it), else it is `lost` with the reason, and the
-  // same frame goes on to the start near a reference and the relocaliser.
+  // and this share of those it could check; a pose short of that is `lost` with the reason, and
+  // the same frame goes on to the start near a reference and the relocaliser.
   int verifyMinPoints = 8;
   double verifyMinShare = 0.2;
-  // Short of those but with at least these, the pose is unsure rather than refuted: it is kept
-  // when the relocaliser, asked on the same frame, finds no pose or agrees with it.
+  // Short of those but with at least these, the pose is unsure rather than refuted: the
+  // relocaliser is asked on the same frame, and the pose is kept when it finds a pose that agrees
+  // with it, or finds none and the pose was tracked on from the last frame (not a seed or a jump).
   int verifyUnsurePoints = 4;
   double verifyUnsureShare = 0.12;
   // Predicted overlay error (PredictedOverlayError.hpp): the RMS image displacement of the

@@ -65,8 +65,8 @@ std::vector<StampedImageFile> readFrameList(const fs::path& folder) {
     if (!frames.empty() && ns <= previous)
       throw Error(where + ": timestamp " + stamp + " does not increase");
     const fs::path file = folder / "data" / name;
-    std::error_code
-        unreadable;  // a name the file system refuses (too long, ...) does not exist either
+    // A name the file system refuses (too long, ...) does not exist either.
+    std::error_code unreadable;
     if (!fs::is_regular_file(file, unreadable))
       throw Error(where + ": image '" + file.string() + "' does not exist");
     previous = ns;

@@ -244,21 +244,24 @@ struct PoseTracker::Impl {
   // keypoint check of MultiReferenceTracker's verification refuses them
   // (relocalisation.min_keypoint_support).
   void computeDistinctiveCorners() {
-    const double radius =
-        1.5 * resolutionScale(map.camera.imageSize()) *
-        std::max({params.correlation.searchHalfWidthPx, params.correlation.searchHalfHeightPx,
-                  static_cast<double>(params.wideBaseline.seedSearchAt320x240)});
+    const double radius = distinctiveRadius();
     const int half = params.correlation.halfWindow;
     const double twin = params.correlation.minScore;
     distinctiveA = distinctiveCorners(refA.gray, refA.matchable.corners, half, radius, twin);
     distinctiveB = distinctiveCorners(refB.gray, refB.matchable.corners, half, radius, twin);
-    buildVerifier(radius);
+    buildVerifier();
+  }
+  double distinctiveRadius() const {
+    return 1.5 * resolutionScale(map.camera.imageSize()) *
+           std::max({params.correlation.searchHalfWidthPx, params.correlation.searchHalfHeightPx,
+                     static_cast<double>(params.wideBaseline.seedSearchAt320x240)});
   }
 
   // The verifier reads the map points where the references measured them, each flagged with its
   // corner's distinctiveness in that reference, and the references' keypoints with a 3D point
   // (setVerificationKeypoints), flagged alike.
-  void buildVerifier(double radius) {
+  void buildVerifier() {
+    const double radius = distinctiveRadius();
     std::vector<Eigen::Vector3d> points;
     VerifiedReference a, b;
     a.gray8 = refA.matchable.gray8;
@@ -394,16 +397,22 @@ struct PoseTracker::Impl {
   // (tightSeed); its result is the frame's. `firstPass` names the pass before it in the timings.
   PoseTrackingResult matchAgainAround(const cv::Mat& frame, const RigidPose& TAk,
                                       const char* firstPass, Clock::time_point start) {
-    seedPose = TAk * map.T_A;
-    tightSeed = true;
-    lastTAk.reset();
-    regularizer->reset();
+    seedWith(TAk * map.T_A, true);
     const double firstPassMs = msSince(start);
     PoseTrackingResult again = process(frame);
     again.timings.insert(
         again.timings.begin(),
         {std::string("before the match around the pose (") + firstPass + ")", firstPassMs});
     return again;
+  }
+
+  // The next process() starts from this world -> camera pose (PoseTracker::seed), its candidates
+  // searched within the tracking window when `tight`, else the wide seed search.
+  void seedWith(const RigidPose& worldToCamera, bool tight) {
+    seedPose = worldToCamera;
+    tightSeed = tight;
+    lastTAk.reset();
+    regularizer->reset();
   }
 
   // Previous-match seeds from a predicted pose: every map point in front of the camera and
@@ -437,7 +446,6 @@ struct PoseTracker::Impl {
     std::vector<WideBaselineMatch> toA, toB;  // frame corner -> reference corner
     cv::Matx33d H = cv::Matx33d::eye();       // V_k -> V_{k-1} (identity unless measured)
     bool haveFrameToFrame = false;
-    int frameToFrameMatches = 0, frameToFrameInliers = 0;
   };
   struct Measurements {
     std::vector<Eigen::Vector2d> undistorted;      // corrected, undistorted frame pixels
@@ -511,13 +519,10 @@ void PoseTracker::Impl::matchFrameToFrame(const FrameCorners& c, double scale, F
     a.push_back(c.f2fPoints[static_cast<std::size_t>(x.first)]);
     b.push_back(prevF2F[static_cast<std::size_t>(x.second)]);
   }
-  std::vector<uchar> inlier;
-  const cv::Mat Hm = cv::findHomography(a, b, cv::RANSAC, 3.0 * scale, inlier);
+  const cv::Mat Hm = cv::findHomography(a, b, cv::RANSAC, 3.0 * scale);
   if (Hm.empty()) return;
   m.H = cv::Matx33d(Hm);
   m.haveFrameToFrame = true;
-  m.frameToFrameMatches = static_cast<int>(f2f.size());
-  m.frameToFrameInliers = static_cast<int>(std::count(inlier.begin(), inlier.end(), 1));
 }
 
 // Stage 3a, wide-baseline matching (tracked or seeded frames): the frame's corners to V_A and
@@ -990,8 +995,6 @@ PoseTrackingResult PoseTracker::Impl::process(const cv::Mat& frame) {
     r.timings.push_back({"initialise", msSince(t)});
   }
   completeThroughMap(corners.pixels.size(), matches);
-  r.frameToFrameMatches = matches.frameToFrameMatches;
-  r.frameToFrameInliers = matches.frameToFrameInliers;
   r.matchesA = static_cast<int>(matches.toA.size());
   r.matchesB = static_cast<int>(matches.toB.size());
 
@@ -1110,10 +1113,7 @@ void PoseTracker::setCornerVarianceModel(const CornerVarianceModel& model) {
 }
 void PoseTracker::seed(const RigidPose& worldToCamera) {
   if (!worldToCamera.allFinite()) throw Error("PoseTracker::seed: non-finite pose");
-  impl_->seedPose = worldToCamera;
-  impl_->tightSeed = false;
-  impl_->lastTAk.reset();
-  impl_->regularizer->reset();
+  impl_->seedWith(worldToCamera, false);
 }
 void PoseTracker::forgetLearnedReliability() {
   impl_->pointReliability.clear();
@@ -1134,7 +1134,7 @@ void PoseTracker::setVerificationKeypoints(std::vector<VerificationKeypoint> inA
                                            std::vector<VerificationKeypoint> inB) {
   impl_->verificationKeypoints[0] = std::move(inA);
   impl_->verificationKeypoints[1] = std::move(inB);
-  impl_->computeDistinctiveCorners();
+  impl_->buildVerifier();  // the reference corners' distinctiveness is unchanged
 }
 void PoseTracker::setPoseConfirmation(PoseConfirmation confirmation) {
   impl_->confirmation = std::move(confirmation);

@@ -64,7 +64,6 @@ struct PoseTrackingResult {
   // The check of the pose (PoseVerifier): distinctive map points it projects into the frame, and
   // how many of them the frame confirmed; verificationFailed: the frame is lost by that check.
   int verifyCheckable = 0, verifyConfirmed = 0;
-  int frameToFrameMatches = 0, frameToFrameInliers = 0;  // the homography V_k -> V_k-1 (tracking)
   bool confirmedBySecondOpinion = false;  // the check fell short; the second opinion accepted it
   bool verificationFailed = false;
   std::vector<StageTiming> timings;

@@ -250,10 +250,11 @@ void writeGroundTruthBenchmarkPlot(const GroundTruthBenchmarkResult& r,
   if (drawn.empty())  // no reftrack run: the first method's
     for (std::size_t i = 0; i < r.runs.size() && drawn.empty(); ++i)
       if (r.runs[i].order.name == order) drawn.push_back(i);
+  std::vector<MethodSummary> summaries;
   double p95 = 0.0;
   for (std::size_t i : drawn) {
-    const double q = summarise(r.runs[i], r.truth).p95Px;
-    if (std::isfinite(q)) p95 = std::max(p95, q);
+    summaries.push_back(summarise(r.runs[i], r.truth));
+    if (std::isfinite(summaries.back().p95Px)) p95 = std::max(p95, summaries.back().p95Px);
   }
   const double cap = std::clamp(std::ceil(1.5 * p95), kPlotErrorCapMinPx, kPlotErrorCapMaxPx);
   const std::string versus =
@@ -262,9 +263,8 @@ void writeGroundTruthBenchmarkPlot(const GroundTruthBenchmarkResult& r,
                   textf("frame (%d; gaps: no pose)", r.frames),
                   textf("mean cube vertex error, px (above %.0f drawn at %.0f)", cap, cap),
                   cv::Size(1200, 600));
-  std::size_t colour = 0;
-  for (std::size_t i : drawn) {
-    const MethodRun& run = r.runs[i];
+  for (std::size_t d = 0; d < drawn.size(); ++d) {
+    const MethodRun& run = r.runs[drawn[d]];
     const std::vector<bool> played = playedFrames(run.plan, r.frames);
     std::vector<double> x, y;
     for (int k = 0; k < r.frames; ++k) {
@@ -272,10 +272,9 @@ void writeGroundTruthBenchmarkPlot(const GroundTruthBenchmarkResult& r,
       x.push_back(k);
       y.push_back(std::min(run.errorPx[static_cast<std::size_t>(k)], cap));
     }
-    const MethodSummary summary = summarise(run, r.truth);
     plot.addLine(textf("%s (%.1f%% posed, mean %.3f px)", run.method.c_str(),
-                       summary.coveragePercent(), summary.meanPx),
-                 x, y, kColours[colour++ % std::size(kColours)]);
+                       summaries[d].coveragePercent(), summaries[d].meanPx),
+                 x, y, kColours[d % std::size(kColours)]);
   }
   plot.save(png);
 }
