@@ -29,6 +29,7 @@ void RelocalisationParams::fields(Self& p, const Field& field) {
   field("enabled", p.enabled);
   field("keypoints", p.keypoints, OneOf{{"orb", "akaze", "sift"}});
   field("features_per_frame", p.featuresPerFrame, Range{50, 100000});
+  field("sift_frame_scale", p.siftFrameScale, Range{0.25, 1.0});
   field("features_per_reference", p.featuresPerReference, Range{50, 100000});
   field("reference_finer_levels", p.referenceFinerLevels, Range{0, 8});
   field("frame_finer_levels", p.frameFinerLevels, Range{0, 8});
@@ -39,6 +40,8 @@ void RelocalisationParams::fields(Self& p, const Field& field) {
   field("min_inliers", p.minInliers, Range{6, 100000});
   field("min_inlier_ratio", p.minInlierRatio, Range{0.0, 1.0});
   field("attempt_every_frames", p.attemptEveryFrames, Range{1, 10000});
+  field("budget_ms_per_frame", p.budgetMsPerFrame, Range{0.0, 1e6});
+  field("budget_burst_ms", p.budgetBurstMs, Range{0.0, 1e9});
   field("min_inlier_cells", p.minInlierCells, Range{1, 16});
   field("max_rotation_sigma_deg", p.maxRotationSigmaDeg, Range{0.0, 180.0});
   field("max_position_sigma_ratio", p.maxPositionSigmaRatio, Range{0.0, 10.0});

@@ -29,6 +29,14 @@ struct RelocalisationParams : ParamSection<RelocalisationParams> {
   // above the image (upsampled 1.2x each; the keypoint cap grows by a quarter per level) and
   // matched to every reference: a far view's scene is small. 0: no second detection.
   int frameFinerLevels = 3;
+  // SIFT only: a frame is reduced by this factor before detection (cv::INTER_AREA; keypoints are
+  // mapped back to frame pixels). OpenCV's SIFT doubles the image for its first octave, which
+  // costs most of an attempt. Real desk clip, references 0/40, every frame a cold start (`track
+  // --cold-starts`; 151 relocalisation attempts, one thread): scale 1.0: 388 of 400 frames posed,
+  // 140 attempts verified, median 98 ms per attempt (detection 81 ms CPU); 0.7: 393, 144, 43 ms
+  // (detection 29 ms); 0.6: 369, 121, 36 ms; 0.5: 375, 126, 28 ms. The references keep full
+  // resolution (matching across scales is what SIFT is for).
+  double siftFrameScale = 0.7;
   int featuresPerReference = 2000;  // keypoints stored per reference (640x480)
   // ORB only: pyramid levels above each reference image (upsampled 1.2x each) at prepare time,
   // for views closer than the reference's. Measured on the first 93 of the 200 views of
@@ -44,7 +52,18 @@ struct RelocalisationParams : ParamSection<RelocalisationParams> {
   double reprojectionPx = 2.0;   // PnP-RANSAC inlier threshold (pixels at 320x240)
   int minInliers = 20;           // fewer inliers: no candidate (never a pose without support)
   double minInlierRatio = 0.25;  // inliers / 2D-3D matches below this: no candidate
-  int attemptEveryFrames = 1;    // while lost, try on every n-th frame (time budget)
+  int attemptEveryFrames = 1;    // while lost, try at most on every n-th frame
+  // The time budget while lost (RelocalisationBudget): the recovery (re-seed, start near a
+  // reference, relocalisation) spends at most budget_burst_ms plus budget_ms_per_frame per lost
+  // frame, in process CPU time as measured; a frame the budget leaves out is not searched, and a
+  // blank frame (a covered lens) costs nothing. At 30 fps 3.0 ms per frame is 9% of one core;
+  // the burst lets the first ~4 searches (45-50 ms each) come on consecutive frames: a cut, a
+  // short look away. Tracking again refills it. `bench-real --order away:900 --away-input`
+  // (the other shared clip as the other scene): desk 3.26 ms per frame while away (9.8% of a
+  // core), back 1 frame after the return; shelf 3.31 ms (9.9%), back after 15 frames (one
+  // search's cost over the rate: the longest wait). Without a budget: 8.1 ms (24%).
+  double budgetMsPerFrame = 3.0;
+  double budgetBurstMs = 200.0;
   // The inliers must cover at least this many cells of a 4x4 grid over the frame: a pose held
   // up by one small patch of the image is too weakly constrained to hand to the tracker.
   int minInlierCells = 3;

@@ -13,4 +13,12 @@ inline double threadCpuMs() {
   return 1e3 * static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_nsec);
 }
 
+// Milliseconds of CPU time the whole process has used so far, every thread (OpenCV's workers
+// too): what a budget of "a share of one core" must count (POSIX; 0 where unavailable).
+inline double processCpuMs() {
+  timespec t{};
+  if (clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t) != 0) return 0.0;
+  return 1e3 * static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_nsec);
+}
+
 }  // namespace reftrack

@@ -23,9 +23,12 @@ int KeypointFeatures::normType() const { return kind_ == "sift" ? cv::NORM_L2 : 
 
 void KeypointFeatures::detectAndDescribe(const cv::Mat& image, int maxKeypoints,
                                          std::vector<cv::KeyPoint>& keypoints, cv::Mat& descriptors,
-                                         int finerLevels, int coarserLevels) const {
+                                         int finerLevels, int coarserLevels, double scale) const {
+  if (!(scale > 0.0 && scale <= 1.0))
+    throw Error("keypoint detection scale " + std::to_string(scale) + " is not in (0, 1]");
   cv::Mat gray = image;
   if (image.channels() == 3) cv::cvtColor(image, gray, cv::COLOR_BGR2GRAY);
+  if (scale < 1.0) cv::resize(gray, gray, cv::Size(), scale, scale, cv::INTER_AREA);
   keypoints.clear();
   descriptors.release();
   if (kind_ == "orb") {
@@ -48,6 +51,12 @@ void KeypointFeatures::detectAndDescribe(const cv::Mat& image, int maxKeypoints,
     descriptors = descriptors.rowRange(0, maxKeypoints).clone();
   }
   if (keypoints.empty()) descriptors = cv::Mat();
+  // Back to the image's pixels: cv::resize maps pixel centres (x_small = (x + 0.5) s - 0.5).
+  if (scale < 1.0)
+    for (cv::KeyPoint& k : keypoints) {
+      k.pt = (k.pt + cv::Point2f(0.5f, 0.5f)) / static_cast<float>(scale) - cv::Point2f(0.5f, 0.5f);
+      k.size /= static_cast<float>(scale);
+    }
 }
 
 namespace {

@@ -20,10 +20,11 @@ class KeypointFeatures {
   // Detects and describes at most `maxKeypoints` keypoints (the strongest) of an 8-bit grey or
   // BGR image. Descriptors: one row per keypoint. ORB only: `finerLevels` pyramid levels above
   // the image (magnified by 1.2 per level, for views closer than the image's) and
-  // `coarserLevels` beyond ORB's usual 8 (for farther views); keypoints in image pixels.
+  // `coarserLevels` beyond ORB's usual 8 (for farther views). `scale` < 1: detected on the image
+  // reduced by that factor (cv::INTER_AREA); keypoints always in the image's own pixels.
   void detectAndDescribe(const cv::Mat& image, int maxKeypoints,
                          std::vector<cv::KeyPoint>& keypoints, cv::Mat& descriptors,
-                         int finerLevels = 0, int coarserLevels = 0) const;
+                         int finerLevels = 0, int coarserLevels = 0, double scale = 1.0) const;
 
  private:
   std::string kind_;

@@ -105,6 +105,8 @@ struct Relocaliser::Impl {
 
   Impl(const MultiReferenceMap& map, const RelocalisationParams& p)
       : params(p), camera(map.camera), features(p.keypoints) {}
+  // The frame's detection scale: relocalisation.sift_frame_scale for SIFT, full size otherwise.
+  double frameScale() const { return params.keypoints == "sift" ? params.siftFrameScale : 1.0; }
 
   struct Match {
     int reference = -1;  // index into references
@@ -115,7 +117,7 @@ struct Relocaliser::Impl {
   // The references to match: all when there are few, else the best-voted ones.
   std::vector<int> retrieve(const std::vector<cv::KeyPoint>& keypoints,
                             const cv::Mat& descriptors) const;
-  RelocalisationAttempt locate(const cv::Mat& frame) const;
+  RelocalisationAttempt locate(const cv::Mat& frame, double scale) const;
   void checkFrame(const cv::Mat& frame) const;
   KeypointSupport ratioTestSupport(const cv::Mat& frame, const RigidPose& worldToCamera) const;
   int agreeing(const RigidPose& worldToCamera, const std::vector<cv::Point3f>& points,
@@ -189,11 +191,11 @@ int Relocaliser::agreeing(const RigidPose& worldToCamera, const std::vector<cv::
   return impl_->agreeing(worldToCamera, points, pixels);
 }
 
-RelocalisationAttempt Relocaliser::locate(const cv::Mat& frame) const {
+RelocalisationAttempt Relocaliser::locate(const cv::Mat& frame, bool fullResolution) const {
   const auto start = std::chrono::steady_clock::now();
-  const double cpuStart = threadCpuMs();
-  RelocalisationAttempt attempt = impl_->locate(frame);
-  attempt.cpuMs = threadCpuMs() - cpuStart;
+  const double cpuStart = processCpuMs();
+  RelocalisationAttempt attempt = impl_->locate(frame, fullResolution ? 1.0 : impl_->frameScale());
+  attempt.cpuMs = processCpuMs() - cpuStart;
   attempt.ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return attempt;
@@ -359,7 +361,7 @@ KeypointSupport Relocaliser::Impl::ratioTestSupport(const cv::Mat& frame,
   std::vector<cv::KeyPoint> keypoints;
   cv::Mat descriptors;
   features.detectAndDescribe(frame, params.featuresPerFrameFor(camera.imageSize()), keypoints,
-                             descriptors);
+                             descriptors, 0, 0, frameScale());
   std::vector<int> all(references.size());
   std::iota(all.begin(), all.end(), 0);
   const std::vector<Match> best = bestMatches(descriptors, keypoints.size(), all);
@@ -377,14 +379,15 @@ KeypointSupport Relocaliser::Impl::ratioTestSupport(const cv::Mat& frame,
   return support;
 }
 
-RelocalisationAttempt Relocaliser::Impl::locate(const cv::Mat& frame) const {
+RelocalisationAttempt Relocaliser::Impl::locate(const cv::Mat& frame, double scale) const {
   const cv::Size size = camera.imageSize();
   checkFrame(frame);
 
   RelocalisationAttempt out;
   std::vector<cv::KeyPoint> keypoints;
   cv::Mat descriptors;
-  features.detectAndDescribe(frame, params.featuresPerFrameFor(size), keypoints, descriptors);
+  features.detectAndDescribe(frame, params.featuresPerFrameFor(size), keypoints, descriptors, 0, 0,
+                             scale);
   if (static_cast<int>(keypoints.size()) < params.minInliers) {
     out.message = "too few keypoints (" + std::to_string(keypoints.size()) +
                   "): black, textureless or blurred frame";

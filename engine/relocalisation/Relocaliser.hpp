@@ -40,7 +40,7 @@ struct RelocalisationAttempt {
   std::optional<RelocalisationCandidate> candidate;  // nullopt: no pose with enough support
   std::string message;                               // why not, or what was found
   double ms = 0.0;                                   // wall time of locate()
-  double cpuMs = 0.0;                                // the calling thread's CPU time of locate()
+  double cpuMs = 0.0;  // the process's CPU time of locate() (OpenCV's worker threads included)
 };
 
 class Relocaliser {
@@ -50,8 +50,10 @@ class Relocaliser {
   Relocaliser(const MultiReferenceMap& map, const RelocalisationParams& params);
   ~Relocaliser();
   // BGR or grey, the map's size (else reftrack::Error); a frame without enough support (black,
-  // textureless, another scene) gives no candidate and says why in the message.
-  RelocalisationAttempt locate(const cv::Mat& frame) const;
+  // textureless, another scene) gives no candidate and says why in the message. `fullResolution`:
+  // SIFT detects on the whole frame, not reduced by sift_frame_scale (slower, the precision of a
+  // full-size detection: for a second opinion on an unsure pose).
+  RelocalisationAttempt locate(const cv::Mat& frame, bool fullResolution = false) const;
   // Support for a pose found otherwise (a start near a reference): the frame's keypoints'
   // ratio-test matches to every reference's layer, and how many of them `worldToCamera` projects
   // within the PnP inlier threshold. Such matches have no look-alike in the references, so a pose

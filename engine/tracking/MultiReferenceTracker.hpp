@@ -76,6 +76,9 @@ class MultiReferenceTracker {
   TrackingState state() const;
   std::pair<int, int> referencesInUse() const;  // (-1, -1) before the first pose
   int relocalisationAttempts() const;           // since construction
+  // CPU time (ms, every thread) the recovery while lost (re-seeds, starts near a reference,
+  // relocalisation) spent since construction: what the budget (relocalisation.budget_*) counts.
+  double relocalisationCpuMs() const;
   // Why relocalisation is unavailable (no usable keypoint layer, or turned off); empty when on.
   const std::string& relocalisationUnavailable() const;
 

@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <memory>
 #include <opencv2/core/utility.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "app/commands/Commands.hpp"
 #include "app/research/sixdof/GroundTruthBenchmark.hpp"
@@ -21,6 +22,7 @@
 #include "app/research/sixdof/GroundTruthSequence.hpp"
 #include "app/research/sixdof/RealFootageBenchmark.hpp"
 #include "app/research/sixdof/SixDofRuns.hpp"
+#include "app/sources/FrameSourceFactory.hpp"
 #include "engine/core/Error.hpp"
 #include "engine/evaluation/TrajectoryEvaluator.hpp"
 
@@ -37,14 +39,35 @@ struct BenchRealArgs {
   GroundTruthSequenceSpec sequence;
   GroundTruthBenchmarkOptions groundTruth;
   std::vector<double> cubeCentre = {0.0, 0.0, 0.0};
+  std::string awayInput;  // away:N orders: the other scene (image folder, glob or video)
+  int awayFrames = 300;   // ... at most this many of its frames are read
   std::filesystem::path out;
 };
+
+// The other scene of the away:N orders: up to `limit` frames of `input`, BGR.
+std::vector<cv::Mat> readAwayFrames(const std::string& input, int limit) {
+  const std::unique_ptr<FrameSource> source = openFrameSource(input);
+  std::vector<cv::Mat> frames;
+  while (static_cast<int>(frames.size()) < limit) {
+    std::optional<Frame> frame = source->next();
+    if (!frame) break;
+    cv::Mat bgr = frame->image;
+    if (bgr.channels() == 1) cv::cvtColor(bgr, bgr, cv::COLOR_GRAY2BGR);
+    frames.push_back(bgr);
+  }
+  if (frames.empty()) throw Error("bench-real: --away-input '" + input + "' gave no frame");
+  return frames;
+}
 
 void runGroundTruthMode(const BenchRealArgs& a) {
   cv::setNumThreads(1);
   GroundTruthBenchmarkOptions o = a.groundTruth;
   o.cubeCentre = Eigen::Vector3d(a.cubeCentre[0], a.cubeCentre[1], a.cubeCentre[2]);
   o.frames = a.options.frames;
+  if (!a.awayInput.empty()) {
+    o.awayFrames = readAwayFrames(a.awayInput, a.awayFrames);
+    o.awayDescription = std::to_string(o.awayFrames.size()) + " frames of " + a.awayInput;
+  }
   o.check();
   const TrackerParams params = a.params.empty() ? TrackerParams{} : TrackerParams::load(a.params);
   const ReferencePreparerParams prepareParams =
@@ -140,7 +163,9 @@ CommandRegistration registerBenchRealCommand(CLI::App& parent) {
              "sequence, shuffled (every frame a cold start), shuffled-sequence (that order "
              "as one sequence, no reset), cuts:N (N contiguous segments in a shuffled "
              "order, one sequence; frames to re-acquire after each cut), stride:K (frames "
-             "0, K, 2K, ... in order; only those scored)")
+             "0, K, 2K, ... in order; only those scored), away:N (in order, N frames of "
+             "--away-input after the first half: poses there are wrong; the CPU spent there "
+             "and the frames to re-acquire after the return)")
           ->delimiter(',')
           ->capture_default_str();
   CLI::Option* methods =
@@ -148,12 +173,21 @@ CommandRegistration registerBenchRealCommand(CLI::App& parent) {
                       "With --input: methods to run, of reftrack,sift,akaze,orb,kalman")
           ->delimiter(',')
           ->capture_default_str();
+  CLI::Option* awayInput =
+      sub->add_option("--away-input", a->awayInput,
+                      "With --input and an away:N order: frames of another scene (image folder, "
+                      "glob or video; resized to the input's size), played in turn");
+  CLI::Option* awayFrames =
+      sub->add_option("--away-frames", a->awayFrames,
+                      "With --away-input: read at most this many of its frames")
+          ->check(CLI::Range(1, 100000))
+          ->capture_default_str();
   CLI::Option* out = sub->add_option(
       "--out", a->out,
       "With --input: folder for table.txt, cube_errors.csv and cube_errors.png (written once "
       "every run is done)");
-  for (CLI::Option* o :
-       {camera, gt, refFrames, cubeCentre, cubeEdge, shuffleSeed, order, methods, out})
+  for (CLI::Option* o : {camera, gt, refFrames, cubeCentre, cubeEdge, shuffleSeed, order, methods,
+                         awayInput, awayFrames, out})
     o->needs(input);
   // A card clip (the default mode).
   CLI::Option* clip = sub->add_option("--clip", a->clip,
@@ -203,6 +237,7 @@ CommandRegistration registerBenchRealCommand(CLI::App& parent) {
       if (a->groundTruth.references.empty())
         throw CLI::RequiredError("--ref-frames (with --input)");
       GroundTruthBenchmarkOptions check = a->groundTruth;
+      check.awayDescription = a->awayInput;
       try {
         check.check();
       } catch (const Error& e) {

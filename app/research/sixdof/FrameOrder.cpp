@@ -12,9 +12,9 @@ namespace reftrack::app {
 
 namespace {
 
-const char* const kKnownOrders = "sequence, shuffled, shuffled-sequence, cuts:N, stride:K";
+const char* const kKnownOrders = "sequence, shuffled, shuffled-sequence, cuts:N, stride:K, away:N";
 
-// The whole number after "cuts:" / "stride:", or -1 when the rest is not one.
+// The whole number after "cuts:" / "stride:" / "away:", or -1 when the rest is not one.
 int countAfter(const std::string& text, std::size_t prefix) {
   const char* begin = text.data() + prefix;
   const char* end = text.data() + text.size();
@@ -46,6 +46,11 @@ FrameOrder parseFrameOrder(const std::string& text) {
     const int k = countAfter(text, 7);
     if (k < 1) throw Error(bad + "K (the stride) must be a whole number >= 1");
     return {"stride:" + std::to_string(k), FrameOrderKind::Stride, k};
+  }
+  if (text.rfind("away:", 0) == 0) {
+    const int n = countAfter(text, 5);
+    if (n < 1) throw Error(bad + "N (the frames of the other scene) must be a whole number >= 1");
+    return {"away:" + std::to_string(n), FrameOrderKind::Away, n};
   }
   throw Error("bench-real: --order: unknown order '" + text + "' (known: " + kKnownOrders + ")");
 }
@@ -109,6 +114,16 @@ FramePlan planFrames(const FrameOrder& order, int frames, std::uint64_t seed) {
                     std::to_string(order.count) + " but only " + std::to_string(frames) +
                     " frames are benchmarked");
       for (int k = 0; k < frames; k += order.count) plan.frames.push_back(k);
+      break;
+    case FrameOrderKind::Away:
+      if (frames < 2)
+        throw Error("bench-real: --order: '" + order.name + "' needs at least 2 frames, " +
+                    std::to_string(frames) + " are benchmarked");
+      plan.frames.assign(sequence.begin(), sequence.begin() + frames / 2);
+      plan.awayStart = plan.frames.size();
+      for (int j = 0; j < order.count; ++j) plan.frames.push_back(-1 - j);
+      plan.awayEnd = plan.frames.size();
+      plan.frames.insert(plan.frames.end(), sequence.begin() + frames / 2, sequence.end());
       break;
   }
   return plan;

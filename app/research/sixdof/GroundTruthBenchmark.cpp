@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <memory>
 #include <numeric>
+#include <opencv2/imgproc.hpp>
 #include <set>
 
 #include "app/research/baselines/OrbPnpKalmanTracker.hpp"
@@ -40,7 +41,13 @@ void GroundTruthBenchmarkOptions::check() const {
     throw Error("bench-real: --cube-edge must be > 0 m");
   if (frames < 0) throw Error("bench-real: --frames must be >= 0 (0: every frame)");
   if (passes < 1) throw Error("bench-real: --passes must be >= 1");
-  parseFrameOrders(orders);
+  for (const FrameOrder& order : parseFrameOrders(orders))
+    if (order.kind == FrameOrderKind::Away && awayFrames.empty() && awayDescription.empty())
+      throw Error("bench-real: --order " + order.name +
+                  " needs the other scene's frames (--away-input)");
+  for (const cv::Mat& f : awayFrames)
+    if (f.empty() || f.type() != CV_8UC3)
+      throw Error("bench-real: --away-input: a frame is empty or not 8-bit BGR");
   if (methods.empty()) throw Error("bench-real: --methods names no method");
   const std::vector<std::string>& known = groundTruthBenchmarkMethods();
   std::set<std::string> named;
@@ -100,6 +107,20 @@ std::vector<CutRecovery> cutRecoveries(const MethodRun& run) {
     recoveries.push_back(r);
   }
   return recoveries;
+}
+
+AwayReturn awayReturn(const MethodRun& run) {
+  AwayReturn r;
+  const std::vector<int>& frames = run.plan.frames;
+  if (run.plan.awayEnd <= run.plan.awayStart) return r;
+  for (std::size_t i = run.plan.awayEnd; i < frames.size(); ++i) {
+    const std::size_t k = static_cast<std::size_t>(frames[i]);
+    const double e = k < run.errorPx.size() ? run.errorPx[k] : NAN;
+    if (e > kWrongPosePx) ++r.wrongAfter;
+    if (r.framesToReacquire < 0 && e <= kGoodPosePx)
+      r.framesToReacquire = static_cast<int>(i - run.plan.awayEnd);
+  }
+  return r;
 }
 
 PredictionSummary summarisePrediction(const MethodRun& run, const std::vector<bool>& truth) {
@@ -254,12 +275,23 @@ double frameRate(const std::vector<double>& timestamps) {
 }  // namespace
 
 void playFrames(PoseMethod& method, const GroundTruthSequence& s,
-                const std::vector<Eigen::Vector3d>& cube, bool score, MethodRun& run) {
+                const std::vector<Eigen::Vector3d>& cube, bool score, MethodRun& run,
+                const std::vector<cv::Mat>& away) {
   method.startRun();
   for (int k : run.plan.frames) {
     if (run.plan.coldStarts) method.coldStart();
-    const std::size_t frame = static_cast<std::size_t>(k);
     std::string reason;
+    if (k < 0) {  // the other scene: no true pose, so any pose is wrong
+      if (away.empty()) throw Error("bench-real: an away:N order without the other scene's frames");
+      const double cpu0 = threadCpuMs();
+      const bool posed =
+          method.locate(away[static_cast<std::size_t>(-1 - k) % away.size()], reason).has_value();
+      run.cpuMs.push_back(threadCpuMs() - cpu0);
+      run.awayCpuMs.push_back(run.cpuMs.back());
+      if (score && posed) ++run.awayPosed;
+      continue;
+    }
+    const std::size_t frame = static_cast<std::size_t>(k);
     const double cpu0 = threadCpuMs();
     const std::optional<RigidPose> pose = method.locate(s.frames[frame], reason);
     run.cpuMs.push_back(threadCpuMs() - cpu0);
@@ -308,6 +340,22 @@ GroundTruthBenchmarkResult runGroundTruthBenchmark(const GroundTruthSequence& s,
   result.cubeEdge = o.cubeEdge;
   result.shuffleSeed = o.shuffleSeed;
   result.passes = o.passes;
+  result.fps = frameRate(s.timestamps);
+  result.awayDescription = o.awayDescription;
+  for (const FrameOrder& order : result.orders)
+    if (order.kind == FrameOrderKind::Away && o.awayFrames.empty())
+      throw Error("bench-real: --order " + order.name + ": " + o.awayDescription +
+                  " gave no frame");
+  std::vector<cv::Mat> away;  // the other scene at the sequence's frame size
+  for (const cv::Mat& f : o.awayFrames) {
+    if (f.size() == s.camera.imageSize()) {
+      away.push_back(f);
+      continue;
+    }
+    cv::Mat resized;
+    cv::resize(f, resized, s.camera.imageSize(), 0, 0, cv::INTER_AREA);
+    away.push_back(resized);
+  }
   // The orders' plans, checked against the frames before the (slow) preparation.
   result.orders = parseFrameOrders(o.orders);
   std::vector<FramePlan> plans;
@@ -370,7 +418,7 @@ GroundTruthBenchmarkResult runGroundTruthBenchmark(const GroundTruthSequence& s,
         PoseMethod& method = *methods[m];
         MethodRun& run = result.runs[m * result.orders.size() + i];
         const auto runStart = std::chrono::steady_clock::now();
-        playFrames(method, s, cube, pass == 0, run);
+        playFrames(method, s, cube, pass == 0, run, away);
         if (progress) {
           const double seconds =
               std::chrono::duration<double>(std::chrono::steady_clock::now() - runStart).count();

@@ -45,9 +45,14 @@ struct GroundTruthBenchmarkOptions {
   std::uint64_t shuffleSeed = 1;  // of the shuffled orders (shuffled, shuffled-sequence, cuts:N)
   std::vector<std::string> methods = groundTruthBenchmarkMethods();
   std::vector<std::string> orders = defaultFrameOrders();  // `--order` names, in table order
+  // away:N orders: frames of another scene (any size: resized to the sequence's), played in
+  // turn; `awayDescription` names them in the table.
+  std::vector<cv::Mat> awayFrames;
+  std::string awayDescription;
 
-  // Throws reftrack::Error naming the bad option (before anything is read). An order's N or K
-  // beyond the frames is checked by runGroundTruthBenchmark (planFrames), before the map.
+  // Throws reftrack::Error naming the bad option (before anything is read), also an away:N
+  // order with neither awayFrames nor an awayDescription (the source still to be read). An order's
+  // N or K beyond the frames is checked by runGroundTruthBenchmark (planFrames), before the map.
   void check() const;
 };
 
@@ -61,6 +66,10 @@ struct MethodRun {
   std::vector<double> errorPx;
   std::vector<std::optional<RigidPose>> poses;  // per frame index, first pass: world->camera
   std::vector<double> cpuMs;                    // every played frame, every pass
+  // away:N: the frames of the other scene given a pose (every one is wrong; first pass) and
+  // their thread CPU times (every pass; also in cpuMs).
+  int awayPosed = 0;
+  std::vector<double> awayCpuMs;
   std::map<std::string, int> noPose;  // reason -> played frames with a true pose but none estimated
   // reftrack only (NaN elsewhere), per frame index, first pass: the cube error its covariance
   // predicts (MultiReferenceResult::predictedErrorPx for the scoring cube), and whether the frame
@@ -98,6 +107,14 @@ struct CutRecovery {
 // Per cut of run.plan (none unless the order has cuts), from run.errorPx.
 std::vector<CutRecovery> cutRecoveries(const MethodRun& run);
 
+// How a method came back after an away:N order's other scene: frames after the return before
+// the first pose within kGoodPosePx (-1: never), and the poses more than kWrongPosePx off after.
+struct AwayReturn {
+  int framesToReacquire = -1;
+  int wrongAfter = 0;
+};
+AwayReturn awayReturn(const MethodRun& run);
+
 // Calibration of the predicted error (issue 32) over the posed frames with a true pose and a
 // prediction: true / predicted cube error per frame, and the predictions themselves.
 struct PredictionSummary {
@@ -121,6 +138,8 @@ struct GroundTruthBenchmarkResult {
   double cubeEdge = 0.0;
   std::uint64_t shuffleSeed = 0;
   int passes = 0;
+  double fps = 30.0;  // the sequence's frame rate (its timestamps; 30 when they do not tell)
+  std::string awayDescription;                                 // away:N orders: the other scene
   int mapPoints = 0, mapKeypoints = 0, mapKeypointPoints = 0;  // reftrack's map
   std::vector<std::pair<std::string, int>> modelPoints;  // peers' triangulated points, by method
   std::vector<FrameOrder> orders;                        // as options.orders named them
@@ -151,8 +170,10 @@ class PoseMethod {
 // (coldStart() before each only when the plan says so), its thread CPU time appended to
 // run.cpuMs; with `score` (the first pass) each frame's pose, cube error against its true pose
 // and the reasons for no pose are recorded too (run.errorPx and run.poses hold every frame index).
+// Away frames (plan index -1 - j) come from away[j % away.size()].
 void playFrames(PoseMethod& method, const GroundTruthSequence& sequence,
-                const std::vector<Eigen::Vector3d>& cube, bool score, MethodRun& run);
+                const std::vector<Eigen::Vector3d>& cube, bool score, MethodRun& run,
+                const std::vector<cv::Mat>& away = {});
 
 // The mean pixel distance of the cube's vertices between `estimate` and `truth` (world->camera),
 // projected with K alone; vertices behind either camera are left out, and a pose that leaves

@@ -9,6 +9,7 @@
 #include <iomanip>
 
 #include "app/plot/PlotCanvas.hpp"
+#include "app/research/sixdof/RealFootageBenchmark.hpp"
 #include "engine/core/AtomicFile.hpp"
 #include "engine/core/Error.hpp"
 
@@ -63,8 +64,62 @@ std::string describe(const FrameOrder& order, int frames) {
     case FrameOrderKind::Stride:
       return textf("%s: frames 0, %d, %d, ... in order, one sequence (only those scored)",
                    order.name.c_str(), order.count, 2 * order.count);
+    case FrameOrderKind::Away:
+      return textf("%s: in order, %d frames of another scene after frame %d, one sequence",
+                   order.name.c_str(), order.count, frames / 2 - 1);
   }
   return "";
+}
+
+// Per peer in reftrack's orders with cold starts or an other scene: the frames the peer posed
+// within kWrongPosePx and reftrack did not (with the first few frame indices), and the reverse.
+std::string reacquiredLines(const GroundTruthBenchmarkResult& r) {
+  std::string out;
+  for (const MethodRun& ours : r.runs) {
+    if (ours.method != "reftrack") continue;
+    if (!ours.plan.coldStarts && ours.order.kind != FrameOrderKind::Away) continue;
+    for (const MethodRun& peer : r.runs) {
+      if (peer.method == "reftrack" || peer.order.name != ours.order.name) continue;
+      std::vector<int> onlyPeer;
+      int onlyOurs = 0;
+      for (std::size_t k = 0; k < r.truth.size() && k < ours.errorPx.size(); ++k) {
+        const bool peerGood = peer.errorPx[k] <= kWrongPosePx;
+        const bool oursGood = ours.errorPx[k] <= kWrongPosePx;
+        if (peerGood && !oursGood) onlyPeer.push_back(static_cast<int>(k));
+        onlyOurs += oursGood && !peerGood ? 1 : 0;
+      }
+      std::string frames;
+      for (std::size_t i = 0; i < onlyPeer.size() && i < 12; ++i)
+        frames += (i ? ", " : " (frames ") + std::to_string(onlyPeer[i]);
+      if (!onlyPeer.empty()) frames += onlyPeer.size() > 12 ? ", ...)" : ")";
+      out += textf(
+          "%s order: %zu frames posed within %.0f px by %s but not by reftrack%s; %d by "
+          "reftrack but not by %s\n",
+          ours.order.name.c_str(), onlyPeer.size(), kWrongPosePx, peer.method.c_str(),
+          frames.c_str(), onlyOurs, peer.method.c_str());
+    }
+  }
+  return out;
+}
+
+// One line of an away:N run: poses while away (all wrong), the CPU spent there (mean per frame
+// and its share of one core at the sequence's frame rate) and how the method came back.
+std::string awayLine(const MethodRun& run, double fps, const std::string& scene) {
+  const AwayReturn back = awayReturn(run);
+  double sum = 0.0;
+  for (double ms : run.awayCpuMs) sum += ms;
+  const double mean = run.awayCpuMs.empty() ? NAN : sum / static_cast<double>(run.awayCpuMs.size());
+  std::vector<double> cpu = run.awayCpuMs;
+  return textf(
+      "%s %s (%s): %d posed while away (target 0); CPU while away mean %s ms per frame = %s%% of "
+      "one core at %.0f fps (median %s ms); after the return: first pose within %.1f px %s, %d "
+      "wrong\n",
+      run.method.c_str(), run.order.name.c_str(), scene.c_str(), run.awayPosed,
+      cell(mean, 2).c_str(), cell(mean * fps / 10.0, 1).c_str(), fps,
+      cell(percentileOf(cpu, 0.5), 2).c_str(), kGoodPosePx,
+      back.framesToReacquire < 0 ? "never"
+                                 : textf("after %d frames", back.framesToReacquire).c_str(),
+      back.wrongAfter);
 }
 
 // One line of a cuts:N run: per cut its position, the frames either side, the frames needed to
@@ -156,6 +211,9 @@ std::string groundTruthBenchmarkTable(const GroundTruthBenchmarkResult& r) {
   }
   for (const MethodRun& run : r.runs)
     if (run.order.kind == FrameOrderKind::Cuts) out += cutsLine(run);
+  for (const MethodRun& run : r.runs)
+    if (run.order.kind == FrameOrderKind::Away) out += awayLine(run, r.fps, r.awayDescription);
+  out += reacquiredLines(r);
   for (const MethodRun& run : r.runs) {
     const int behind = summarise(run, r.truth).behind;
     if (behind > 0)

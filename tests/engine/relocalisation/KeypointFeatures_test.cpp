@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <opencv2/imgproc.hpp>
 
 #include "engine/core/Error.hpp"
 #include "engine/tracking/TrackingTestImages.hpp"
@@ -179,6 +180,37 @@ TEST(KeypointFeatures, OrbFinerLevelsGiveSmallerKeypointsInImagePixels) {
   EXPECT_NEAR(smallestPlain, 31.0f, 1e-3f);
   EXPECT_NEAR(smallestFiner, 31.0f / std::pow(1.2f, 3.0f), 0.05f);
   EXPECT_GT(belowImageScale, static_cast<int>(finer.size()) / 4);
+}
+
+// Detection on a reduced copy (relocalisation.sift_frame_scale) gives keypoints in the image's own
+// pixels: an image made 2x larger and detected at scale 0.5 finds the original's SIFT keypoints at
+// twice their positions (within 0.6 px of the large image: the reduction is exact up to
+// interpolation, and SIFT localises to a fraction of a pixel) and twice their size.
+TEST(KeypointFeatures, AReducedDetectionReportsKeypointsInTheImagesPixels) {
+  const cv::Mat small = test::texturedImage({320, 240}, 11);
+  cv::Mat large;
+  cv::resize(small, large, cv::Size(), 2.0, 2.0, cv::INTER_CUBIC);
+  const KeypointFeatures sift("sift");
+  std::vector<cv::KeyPoint> direct, reduced;
+  cv::Mat d1, d2;
+  sift.detectAndDescribe(small, 300, direct, d1);
+  sift.detectAndDescribe(large, 300, reduced, d2, 0, 0, 0.5);
+  ASSERT_GE(direct.size(), 200u);
+  ASSERT_GE(reduced.size(), 200u);
+  int close = 0;
+  for (const cv::KeyPoint& k : direct) {
+    const cv::Point2f expected = (k.pt + cv::Point2f(0.5f, 0.5f)) * 2.0f - cv::Point2f(0.5f, 0.5f);
+    for (const cv::KeyPoint& r : reduced)
+      if (cv::norm(r.pt - expected) < 0.6 && std::abs(r.size - 2.0f * k.size) < 0.2f * k.size) {
+        ++close;
+        break;
+      }
+  }
+  EXPECT_GT(close, static_cast<int>(direct.size()) * 3 / 4);
+  std::vector<cv::KeyPoint> k;
+  cv::Mat d;
+  EXPECT_THROW(sift.detectAndDescribe(small, 10, k, d, 0, 0, 0.0), Error);
+  EXPECT_THROW(sift.detectAndDescribe(small, 10, k, d, 0, 0, 1.5), Error);
 }
 
 }  // namespace

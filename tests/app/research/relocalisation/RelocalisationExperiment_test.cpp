@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <memory>
+#include <thread>
 
 #include "app/research/sixdof/SimulatedSequence.hpp"
 #include "engine/core/Error.hpp"
@@ -133,7 +135,11 @@ TEST(RelocalisationExperiment, ColdStartAndKidnappedCameraOnSmallSamples) {
     if (t.relocaliseMs >= 0.0) {
       ++attempts;
       EXPECT_GE(t.relocaliseCpuMs, 0.0);
-      EXPECT_LE(t.relocaliseCpuMs, t.relocaliseMs + 0.1);
+      // Process CPU (OpenCV's workers included): at most the wall time on each core there is.
+      EXPECT_LE(
+          t.relocaliseCpuMs,
+          t.relocaliseMs * std::max(1, static_cast<int>(std::thread::hardware_concurrency())) +
+              0.1);
     } else {
       EXPECT_TRUE(t.posed) << t.trackerMessage;
     }

@@ -27,7 +27,8 @@ TEST(FrameOrder, ParsesEveryOrderByName) {
         Case{"cuts:2", "cuts:2", FrameOrderKind::Cuts, 2, false},
         Case{"cuts:012", "cuts:12", FrameOrderKind::Cuts, 12, false},
         Case{"stride:1", "stride:1", FrameOrderKind::Stride, 1, false},
-        Case{"stride:4", "stride:4", FrameOrderKind::Stride, 4, false}}) {
+        Case{"stride:4", "stride:4", FrameOrderKind::Stride, 4, false},
+        Case{"away:900", "away:900", FrameOrderKind::Away, 900, false}}) {
     const FrameOrder o = parseFrameOrder(c.text);
     EXPECT_EQ(o.name, c.name) << c.text;
     EXPECT_EQ(o.kind, c.kind) << c.text;
@@ -49,7 +50,7 @@ TEST(FrameOrder, BadNamesAreErrorsNamingTheOrderOption) {
     EXPECT_NE(m.find("bench-real: --order: unknown order '" + std::string(unknown) + "'"),
               std::string::npos)
         << m;
-    EXPECT_NE(m.find("known: sequence, shuffled, shuffled-sequence, cuts:N, stride:K"),
+    EXPECT_NE(m.find("known: sequence, shuffled, shuffled-sequence, cuts:N, stride:K, away:N"),
               std::string::npos)
         << m;
   }
@@ -170,6 +171,21 @@ TEST(FrameOrder, MoreSegmentsOrAStrideBeyondTheFramesIsAnError) {
       std::string::npos)
       << m;
   EXPECT_EQ(test::errorMessage([] { planFrames(parseFrameOrder("cuts:8"), 8, 1); }), "(no error)");
+}
+
+// away:N plays the first half in order, N frames of the other scene (-1 - j), then the rest.
+TEST(FrameOrder, AwayPlaysTheOtherSceneBetweenTheTwoHalves) {
+  const FramePlan plan = planFrames(parseFrameOrder("away:3"), 7, 1);
+  EXPECT_EQ(plan.frames, (std::vector<int>{0, 1, 2, -1, -2, -3, 3, 4, 5, 6}));
+  EXPECT_EQ(plan.awayStart, 3u);
+  EXPECT_EQ(plan.awayEnd, 6u);
+  EXPECT_FALSE(plan.coldStarts);
+  EXPECT_TRUE(plan.cuts.empty());
+  const std::vector<bool> played = playedFrames(plan, 7);
+  EXPECT_EQ(std::count(played.begin(), played.end(), true), 7);
+  EXPECT_EQ(planFrames(parseFrameOrder("sequence"), 7, 1).awayEnd, 0u);
+  EXPECT_THROW(parseFrameOrder("away:0"), Error);
+  EXPECT_THROW(planFrames(parseFrameOrder("away:5"), 1, 1), Error);
 }
 
 }  // namespace

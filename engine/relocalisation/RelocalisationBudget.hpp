@@ -1,0 +1,28 @@
+#pragma once
+// RelocalisationBudget: when a lost tracker may try to relocalise. A bucket of CPU milliseconds:
+// full (burstMs) while tracking, refilled by msPerFrame per lost frame (up to burstMs), emptied
+// by what each attempt spent; an attempt is due while it holds anything. So attempts come on
+// every frame at first and then back off, spending at most burstMs + msPerFrame per lost frame.
+namespace reftrack {
+
+class RelocalisationBudget {
+ public:
+  // Throws reftrack::Error for a negative or non-finite rate or burst.
+  RelocalisationBudget(double msPerFrame, double burstMs);
+  // New rates (as the constructor checks them), the bucket full; spentInAll() goes on counting.
+  void configure(double msPerFrame, double burstMs);
+
+  void refill();          // tracking again: the whole burst is available
+  bool lostFrame();       // one more lost frame: its share is added; true when an attempt is due
+  void spent(double ms);  // what an attempt cost (CPU ms; negative or NaN counts as 0)
+
+  double available() const { return bucketMs_; }  // may be negative right after an attempt
+  double spentInAll() const { return spentMs_; }  // every attempt's cost since construction
+
+ private:
+  double msPerFrame_ = 0.0, burstMs_ = 0.0;
+  double bucketMs_ = 0.0;
+  double spentMs_ = 0.0;
+};
+
+}  // namespace reftrack
