@@ -105,9 +105,11 @@ CommandRegistration registerParamsCommand(CLI::App& parent) {
   CLI::App* sub = parent.add_subcommand(
       "params", "List every parameter key (default, allowed values, meaning) or write them");
   sub->add_option("KEY", options->filters,
-                  "only these keys or sections (corners, pose.alpha, min_inliers); default: all");
+                  "only these keys or sections (corners, pose.alpha, min_inliers); default: all")
+      ->type_name("KEY|SECTION");
   sub->add_option("--write", options->write,
-                  "write the defaults to FILE as commented YAML that `--params` accepts");
+                  "write the defaults to FILE as commented YAML that `--params` accepts")
+      ->type_name("FILE");
   sub->callback([options] { checkFilters(options->filters); });
   return {sub, [options] { runParams(*options); }};
 }
