@@ -1,5 +1,6 @@
 #include "app/viewer/OverlaySettings.hpp"
 
+#include "engine/config/FieldDescriber.hpp"
 #include "engine/config/ParamFields.hpp"
 #include "engine/core/Error.hpp"
 
@@ -25,17 +26,26 @@ std::vector<Eigen::Vector3d> OverlaySettings::cubeWorldVertices() const {
 
 template <class Self, class Field>
 void OverlaySettings::fields(Self& p, const Field& field) {
-  field("size", p.size, Range{1e-6, 1e3});
-  field("offset_x", p.offset.x(), Range{-1e3, 1e3});
-  field("offset_y", p.offset.y(), Range{-1e3, 1e3});
-  field("offset_z", p.offset.z(), Range{-1e3, 1e3});
-  field("model", p.modelPath);
-  field("line_width_px", p.lineWidthPx, Range{0.1, 100.0});
-  field("vertex_dots", p.vertexDots, WrittenAsNumber{});
-  field("show_corners", p.showCorners, WrittenAsNumber{});
-  field("show_matches", p.showMatches, WrittenAsNumber{});
-  field("show_epipolar_lines", p.showEpipolarLines, WrittenAsNumber{});
-  field("show_labels", p.showLabels, WrittenAsNumber{});
+  field("size", p.size, Range{1e-6, 1e3})
+      .help("Overlay size in metres: the cube's edge, or the length of one model unit");
+  field("offset_x", p.offset.x(), Range{-1e3, 1e3})
+      .help("Overlay base centre in the world (marker) frame: x (metres)");
+  field("offset_y", p.offset.y(), Range{-1e3, 1e3})
+      .help("Overlay base centre in the world (marker) frame: y (metres)");
+  field("offset_z", p.offset.z(), Range{-1e3, 1e3})
+      .help("Overlay base centre in the world (marker) frame: z, out of the desk (metres)");
+  field("model", p.modelPath).help("OBJ model drawn instead of the wireframe cube; \"\": the cube");
+  field("line_width_px", p.lineWidthPx, Range{0.1, 100.0}).help("Overlay line width (pixels)");
+  field("vertex_dots", p.vertexDots, WrittenAsNumber{})
+      .help("Draw the cube's 8 vertices as dots of distinct colours");
+  field("show_corners", p.showCorners, WrittenAsNumber{})
+      .help("Draw the frame's corners (debug layer)");
+  field("show_matches", p.showMatches, WrittenAsNumber{})
+      .help("Draw the matches to the references (debug layer)");
+  field("show_epipolar_lines", p.showEpipolarLines, WrittenAsNumber{})
+      .help("Draw the epipolar lines (debug layer)");
+  field("show_labels", p.showLabels, WrittenAsNumber{})
+      .help("Draw the frame index, the tracking status and the tracker's name");
 }
 
 void OverlaySettings::read(const YamlNode& node) {
@@ -48,3 +58,5 @@ void OverlaySettings::read(const YamlNode& node) {
 }  // namespace reftrack::app
 
 template struct reftrack::ParamSection<reftrack::app::OverlaySettings>;
+template void reftrack::app::OverlaySettings::fields(const reftrack::app::OverlaySettings&,
+                                                     const reftrack::FieldDescriber&);

@@ -4,12 +4,15 @@
 // definitions of ParamSection (ParamSection.hpp), for the struct's .cpp, which lists its fields
 // once, in order:
 //   template <class Self, class Field> void Params::fields(Self& p, const Field& field) {
-//     field("count", p.count, Range{4, 100000});  // a value (int/double/bool/text), its rule
+//     field("count", p.count, Range{4, 100000})  // a value (int/double/bool/text), its rule
+//         .help("corners per image; more: slower, steadier");  // its one-line meaning
 //     field("mode", p.mode, TextForm<Mode>{toString, parseMode});  // an enum as its name
 //     field(p.corners);  // a nested section (a ParamSection with its own kSection)
 //   }
 //   template struct ParamSection<Params>;  // check(), write(), read() walk that list
+//   template void Params::fields(const Params&, const FieldDescriber&);  // `reftrack params`
 // A rule is any object with check(name, value) throwing reftrack::Error; name is "section.key".
+// The meanings and the rules are what `reftrack params` lists (FieldDescriber.hpp).
 #include <opencv2/core.hpp>
 #include <string>
 #include <type_traits>
@@ -81,12 +84,18 @@ struct Unchecked {
 // A bool written as 1 / 0 instead of true / false (read either way).
 struct WrittenAsNumber : Unchecked {};
 
+// What a visitor's field(key, value, rule) returns, so that fields() gives each key its meaning
+// as field(...).help("..."): FieldDescriber keeps it, the visitors here drop it.
+struct HelpIgnored {
+  void help(const char*) const {}
+};
+
 // The visitors fields() is walked with.
 class FieldWriter {
  public:
   explicit FieldWriter(cv::FileStorage& fs) : fs_(fs) {}
   template <class T, class Rule = Unchecked>
-  void operator()(const char* key, const T& value, const Rule& rule = {}) const {
+  HelpIgnored operator()(const char* key, const T& value, const Rule& rule = {}) const {
     if constexpr (std::is_enum_v<T>)
       fs_ << key << rule.name(value);
     else if constexpr (std::is_same_v<T, bool> && std::is_same_v<Rule, WrittenAsNumber>)
@@ -95,6 +104,7 @@ class FieldWriter {
       fs_ << key << (value ? "true" : "false");
     else
       fs_ << key << value;
+    return {};
   }
   template <class Section>
   void operator()(const Section& section) const {
@@ -111,7 +121,7 @@ class FieldReader {
  public:
   explicit FieldReader(const YamlNode& node) : node_(node) {}
   template <class T, class Rule = Unchecked>
-  void operator()(const char* key, T& value, const Rule& rule = {}) const {
+  HelpIgnored operator()(const char* key, T& value, const Rule& rule = {}) const {
     if constexpr (std::is_enum_v<T>) {
       std::string name = rule.name(value);
       readConfigValue(node_, key, name);
@@ -124,6 +134,7 @@ class FieldReader {
       readConfigValue(node_, key, value);
     }
     checked(key, [&](const std::string& name) { rule.check(name, value); });
+    return {};
   }
   template <class Section>
   void operator()(Section& section) const {
@@ -150,8 +161,9 @@ class FieldChecker {
  public:
   explicit FieldChecker(std::string section) : section_(std::move(section)) {}
   template <class T, class Rule = Unchecked>
-  void operator()(const char* key, const T& value, const Rule& rule = {}) const {
+  HelpIgnored operator()(const char* key, const T& value, const Rule& rule = {}) const {
     rule.check(section_.empty() ? key : section_ + "." + key, value);
+    return {};
   }
   template <class Section>
   void operator()(const Section& section) const {

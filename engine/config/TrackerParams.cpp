@@ -1,6 +1,7 @@
 #include "engine/config/TrackerParams.hpp"
 
 #include "engine/config/ConfigValue.hpp"
+#include "engine/config/FieldDescriber.hpp"
 #include "engine/config/ParamFields.hpp"
 #include "engine/core/Error.hpp"
 
@@ -18,7 +19,10 @@ TrackingMode parseTrackingMode(const std::string& text) {
 
 template <class Self, class Field>
 void TrackerParams::fields(Self& p, const Field& field) {
-  field("mode", p.mode, TextForm<TrackingMode>{toString, parseTrackingMode});
+  field("mode", p.mode, TextForm<TrackingMode>{toString, parseTrackingMode})
+      .help(
+          "6dof: the camera pose against a prepared reference map; homography: a plane registered "
+          "to a reference frame");
   field(p.corners);
   field(p.correlation);
   field(p.ransac);
@@ -30,6 +34,7 @@ void TrackerParams::fields(Self& p, const Field& field) {
 }
 
 template struct ParamSection<TrackerParams>;
+template void TrackerParams::fields(const TrackerParams&, const FieldDescriber&);
 
 void TrackerParams::read(const YamlNode& root) {
   if (root.isNull()) return;  // an empty file: the defaults
