@@ -21,6 +21,9 @@ void WideBaselineParams::fields(Self& p, const Field& field) {
   field("seed_search", p.seedSearchAt320x240, Range{1, 10000});
   field("align_frame_side", p.alignFrameSide);
   field("align_half_window", p.alignHalfWindow, Range{1, 32});
+  field("keypoint_points", p.keypointPointsAt320x240, Range{0, 1000000});
+  field("keypoint_sigma_px", p.keypointSigmaPx, Range{1e-3, 100.0});
+  field("keypoint_half_window", p.keypointHalfWindow, Range{1, 32});
 }
 
 template struct ParamSection<WideBaselineParams>;
@@ -33,6 +36,10 @@ int scaledCount(int countAt320x240, cv::Size imageSize) {
 
 int WideBaselineParams::frameToFrameCornersFor(cv::Size imageSize) const {
   return scaledCount(frameToFrameCornersAt320x240, imageSize);
+}
+
+int WideBaselineParams::keypointPointsFor(cv::Size imageSize) const {
+  return keypointPointsAt320x240 == 0 ? 0 : scaledCount(keypointPointsAt320x240, imageSize);
 }
 
 int WideBaselineParams::referenceCornersFor(cv::Size imageSize) const {
