@@ -42,6 +42,14 @@ void WideBaselineParams::fields(Self& p, const Field& field) {
       .help("Align each match's warped reference window to the frame by Lucas-Kanade (sub-pixel)");
   field("align_half_window", p.alignHalfWindow, Range{1, 32})
       .help("n: the alignment's windows are (2n+1) x (2n+1) pixels");
+  field("keypoint_points", p.keypointPointsAt320x240, Range{0, 1000000})
+      .help(
+          "Keypoint-layer 3D points also measured per frame by Lucas-Kanade (at 320x240, scaled); "
+          "0: off (more accurate on some clips, 1.5-1.8x slower)");
+  field("keypoint_sigma_px", p.keypointSigmaPx, Range{1e-3, 100.0})
+      .help("Assumed SD of a keypoint measurement (pixels), its weight in the pose");
+  field("keypoint_half_window", p.keypointHalfWindow, Range{1, 32})
+      .help("n: a keypoint's alignment window is (2n+1) x (2n+1) pixels");
 }
 
 template struct ParamSection<WideBaselineParams>;
@@ -55,6 +63,10 @@ int scaledCount(int countAt320x240, cv::Size imageSize) {
 
 int WideBaselineParams::frameToFrameCornersFor(cv::Size imageSize) const {
   return scaledCount(frameToFrameCornersAt320x240, imageSize);
+}
+
+int WideBaselineParams::keypointPointsFor(cv::Size imageSize) const {
+  return keypointPointsAt320x240 == 0 ? 0 : scaledCount(keypointPointsAt320x240, imageSize);
 }
 
 int WideBaselineParams::referenceCornersFor(cv::Size imageSize) const {

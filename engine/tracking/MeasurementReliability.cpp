@@ -22,6 +22,15 @@ void MeasurementReliability::observe(std::size_t source, double whitenedSquared)
   ++count_;
 }
 
+void MeasurementReliability::resize(std::size_t sources) {
+  for (std::size_t i = sources; i < sum_.size(); ++i) {
+    total_ -= sum_[i];
+    count_ -= n_[i];
+  }
+  sum_.resize(sources, 0.0);
+  n_.resize(sources, 0);
+}
+
 void MeasurementReliability::clear() {
   sum_.assign(sum_.size(), 0.0);
   n_.assign(n_.size(), 0);

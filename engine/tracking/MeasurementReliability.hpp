@@ -29,6 +29,8 @@ class MeasurementReliability {
 
   void setPriorObservations(double priorObservations) { prior_ = priorObservations; }
   void clear();  // forgets every observation
+  // Sources past the current count start unobserved; those beyond `sources` are forgotten.
+  void resize(std::size_t sources);
   long observations() const { return count_; }
   std::size_t sources() const { return sum_.size(); }
 

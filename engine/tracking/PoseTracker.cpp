@@ -20,6 +20,7 @@
 #include "engine/matching/DistinctiveCorners.hpp"
 #include "engine/matching/NarrowBaselineMatcher.hpp"
 #include "engine/matching/PatchAligner.hpp"
+#include "engine/tracking/KeypointMeasurer.hpp"
 #include "engine/tracking/MeasurementReliability.hpp"
 #include "engine/tracking/PoseSupport.hpp"
 #include "engine/tracking/PoseVerifier.hpp"
@@ -233,6 +234,9 @@ struct PoseTracker::Impl {
 
   std::vector<char> distinctiveA, distinctiveB;  // per reference corner (DistinctiveCorners)
   std::unique_ptr<PoseVerifier> verifier;        // the check of every pose (pose.verify_*)
+  // The keypoint layer's points measured in every frame (wide_baseline.keypoint_points); their
+  // learned reliability follows the map points' (sources map.matches.size() + point index).
+  std::unique_ptr<KeypointMeasurer> keypointMeasurer;
   std::vector<PoseTracker::VerificationKeypoint> verificationKeypoints[2];  // in A, in B
   PoseTracker::PoseConfirmation confirmation;  // a second opinion when the check says no
   // Repeated texture within reach of a start's search (the narrow-baseline window, the seed
@@ -292,6 +296,23 @@ struct PoseTracker::Impl {
     }
     verifier = std::make_unique<PoseVerifier>(map.camera, std::move(points), map.T_AB(),
                                               std::move(a), std::move(b), verifierParams());
+    buildKeypointMeasurer();
+  }
+  void buildKeypointMeasurer() {
+    std::vector<MeasurableKeypoint> keypoints;
+    for (int r = 0; r < 2; ++r)
+      for (const PoseTracker::VerificationKeypoint& k : verificationKeypoints[r])
+        keypoints.push_back({map.T_A * k.world, k.pixel, r});
+    // Ten steps down to 0.02 px: the start is the linear pose's projection, a pixel or so off;
+    // measured on both real clips (four orders each), the same cube errors within 0.002 px as 40
+    // steps down to 0.005 px (the aligner's defaults).
+    PatchAlignerParams ap;
+    ap.halfWindow = params.wideBaseline.keypointHalfWindow;
+    ap.maxIterations = 10;
+    ap.epsilonPx = 0.02;
+    pointReliability.resize(map.matches.size() + keypoints.size());
+    keypointMeasurer = std::make_unique<KeypointMeasurer>(
+        map.camera, std::move(keypoints), refA.matchable.gray8, refB.matchable.gray8, ap);
   }
   PoseVerifierParams verifierParams() const {
     PoseVerifierParams p;
@@ -332,14 +353,29 @@ struct PoseTracker::Impl {
     }
   }
 
+  // A keypoint point's covariance as computePointCovariances gives a map point's, its two
+  // reference pixels taken as measured to wide_baseline.keypoint_sigma_px.
+  Eigen::Matrix3d keypointCovariance(const Eigen::Vector3d& pointA) const {
+    const Eigen::Matrix3d& K = map.camera.K();
+    const RigidPose TAB = map.T_AB();
+    const Eigen::Matrix<double, 2, 3> JA = projectionJacobian(K, pointA);
+    const Eigen::Matrix<double, 2, 3> JB = projectionJacobian(K, TAB * pointA) * TAB.rotation();
+    const double sd = params.pose.mapPointSdScale * params.wideBaseline.keypointSigmaPx;
+    return (JA.transpose() * JA + JB.transpose() * JB).inverse() * (sd * sd);
+  }
+
   // The whitening of a three-view residual: its covariance is the frame pixel's sigma^2 I plus the
   // point's covariance seen from the frame (J Sigma_P J^T, J at the pose T_Ak).
   Eigen::Matrix2d threeViewWhitening(const RigidPose& TAk, int mapMatch, double sigma) const {
-    const Eigen::Vector3d X = TAk * map.matches[static_cast<std::size_t>(mapMatch)].pointA;
+    const auto m = static_cast<std::size_t>(mapMatch);
+    return threeViewWhitening(TAk, map.matches[m].pointA, pointCovariance[m], sigma);
+  }
+  Eigen::Matrix2d threeViewWhitening(const RigidPose& TAk, const Eigen::Vector3d& pointA,
+                                     const Eigen::Matrix3d& covariance, double sigma) const {
+    const Eigen::Vector3d X = TAk * pointA;
     const Eigen::Matrix<double, 2, 3> J = projectionJacobian(map.camera.K(), X) * TAk.rotation();
     const Eigen::Matrix2d C =
-        sigma * sigma * Eigen::Matrix2d::Identity() +
-        J * pointCovariance[static_cast<std::size_t>(mapMatch)] * J.transpose();
+        sigma * sigma * Eigen::Matrix2d::Identity() + J * covariance * J.transpose();
     const Eigen::Matrix2d L = C.llt().matrixL();
     return L.inverse();
   }
@@ -479,6 +515,7 @@ struct PoseTracker::Impl {
   std::optional<Inliers> rejectOutliers(const FrameCorners& c, const FrameMatches& m,
                                         const Measurements& meas, const std::vector<Pair3D>& pairs,
                                         double gate, PoseTrackingResult& r);
+  void measureKeypoints(const cv::Mat& gray, double gate, Inliers& in, PoseTrackingResult& r);
   bool checkSupport(const PoseEstimate& est, const PoseMeasurements& meas, double scale,
                     PoseTrackingResult& r);
   void keepInliers(const FrameCorners& c, const FrameMatches& m, const Inliers& in,
@@ -828,6 +865,37 @@ std::optional<PoseTracker::Impl::Inliers> PoseTracker::Impl::rejectOutliers(
   return in;
 }
 
+// Stage 7b, keypoint measurements (wide_baseline.keypoint_points): the keypoint layer's points
+// aligned in the frame around their projections by the robust linear pose (KeypointMeasurer),
+// within the gate under it, join the three-view terms (after the corners' own).
+void PoseTracker::Impl::measureKeypoints(const cv::Mat& gray, double gate, Inliers& in,
+                                         PoseTrackingResult& r) {
+  const int cap = params.wideBaseline.keypointPointsFor(gray.size());
+  if (cap <= 0 || !keypointMeasurer) return;
+  const RigidPose TAkLin = RigidPose::fromVector6(in.xLin);
+  const std::vector<KeypointMeasurement> found = keypointMeasurer->measure(gray, TAkLin, cap);
+  std::vector<cv::Point2f> pixels;
+  pixels.reserve(found.size());
+  for (const KeypointMeasurement& k : found) pixels.push_back(k.pixel);
+  const std::vector<cv::Point2f> undistorted = map.camera.undistortPixels(pixels);
+  const double floor = params.wideBaseline.keypointSigmaPx;
+  for (std::size_t i = 0; i < found.size(); ++i) {
+    const auto point = static_cast<std::size_t>(found[i].point);
+    const Eigen::Vector3d& P = keypointMeasurer->points()[point].pointA;
+    const Eigen::Vector2d pK = toEigen(undistorted[i]);
+    if ((map.camera.project(TAkLin * P) - pK).norm() > gate) continue;
+    const std::size_t source = map.matches.size() + point;
+    ThreeViewMatch t{P, pK, std::max(floor, found[i].sigmaPx)};
+    if (params.pose.mapPointSdScale > 0)
+      t.whitening = threeViewWhitening(TAkLin, P, keypointCovariance(P), t.sigma);
+    const double reliability = pointReliability.varianceFactor(source);
+    if (reliability != 1.0) t.whitening = t.whiteningOrScalar() / std::sqrt(reliability);
+    in.threeViewMapMatch.push_back(static_cast<int>(source));
+    in.measurements.threeView.push_back(t);
+    ++r.keypointMeasurements;
+  }
+}
+
 // Stage 9, support: the estimate must be finite with a sane covariance, fit its three-view
 // matches, and the matches alone must pin the scene's image position down (PoseSupport: black,
 // textureless and heavily blurred frames fail here). False (with the reason in r) otherwise.
@@ -1008,9 +1076,14 @@ PoseTrackingResult PoseTracker::Impl::process(const cv::Mat& frame) {
   t = Clock::now();
   const std::vector<Pair3D> pairs = threeViewPairs(matches, meas);
   r.threeView = static_cast<int>(pairs.size());
-  const std::optional<Inliers> inliers = rejectOutliers(corners, matches, meas, pairs, gate, r);
+  std::optional<Inliers> inliers = rejectOutliers(corners, matches, meas, pairs, gate, r);
   r.timings.push_back({"outliers", msSince(t)});
   if (!inliers) return finish(r);
+  if (params.wideBaseline.keypointPointsAt320x240 > 0) {
+    t = Clock::now();
+    measureKeypoints(gray, gate, *inliers, r);
+    r.timings.push_back({"keypoints", msSince(t)});
+  }
 
   // 8. Pose: standard least squares or the temporal regulariser (Eq. 12 / Eq. 13).
   t = Clock::now();
@@ -1068,8 +1141,9 @@ PoseTrackingResult PoseTracker::Impl::process(const cv::Mat& frame) {
     // The tracked frame's residuals inform the readout's estimate (used from a later frame on).
     std::vector<RollingShutterObservation> observations;
     const PoseMeasurements& pm = inliers->measurements;
-    observations.reserve(pm.threeView.size());
-    for (std::size_t i = 0; i < pm.threeView.size(); ++i) {
+    observations.reserve(inliers->threeViewMeasurement.size());
+    // The corners' terms (the keypoint terms after them have no frame-to-frame shift).
+    for (std::size_t i = 0; i < inliers->threeViewMeasurement.size(); ++i) {
       const ThreeViewMatch& x = pm.threeView[i];
       const Eigen::Vector3d X = TAk * x.pointA;
       observations.push_back({X, map.camera.project(X) - x.pK,

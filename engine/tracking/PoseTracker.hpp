@@ -2,16 +2,18 @@
 // PoseTracker (paper Sec. 3-6): the full 6-DOF tracker. Each frame: corners; while tracking,
 // frame-to-frame narrow-baseline matching and homography, wide-baseline matching to V_A and V_B
 // (WideBaselineMatcher), three-view pairs through the map's A<->B matches, outlier rejection by
-// PnP-RANSAC on the 3D-2D pairs and an epipolar gate, then the pose x_Ak from the standard or the
-// regularised estimator (TemporalRegularizer). Not tracking: initialisation by narrow-baseline
-// matching to V_A (or V_B) and V_B through the stored matches, and when that finds too little,
-// with the frame's windows resampled for one of a few distance ratios per frame (a start from
-// farther away or nearer than the reference, along about its line of sight). Never reports a pose
-// without enough inlier support (count, residual RMS, covariance and PoseSupport's reprojection SD,
-// which rejects black, textureless and heavily blurred frames), nor one its check (PoseVerifier)
-// refutes: the frame is `Lost` instead, with the reason. A pose that moved the scene farther than
-// the wide-baseline search since the last frame (a jump), or that came from a seed's wide search,
-// is matched once more around itself on the same frame, and that pass gives the frame's pose.
+// PnP-RANSAC on the 3D-2D pairs and an epipolar gate, optionally the keypoint layer's points
+// aligned around the robust pose's projections (KeypointMeasurer, wide_baseline.keypoint_points),
+// then the pose x_Ak from the standard or the regularised estimator (TemporalRegularizer). Not
+// tracking: initialisation by narrow-baseline matching to V_A (or V_B) and V_B through the stored
+// matches, and when that finds too little, with the frame's windows resampled for one of a few
+// distance ratios per frame (a start from farther away or nearer than the reference, along about
+// its line of sight). Never reports a pose without enough inlier support (count, residual RMS,
+// covariance and PoseSupport's reprojection SD, which rejects black, textureless and heavily
+// blurred frames), nor one its check (PoseVerifier) refutes: the frame is `Lost` instead, with the
+// reason. A pose that moved the scene farther than the wide-baseline search since the last frame (a
+// jump), or that came from a seed's wide search, is matched once more around itself on the same
+// frame, and that pass gives the frame's pose.
 #include <functional>
 #include <memory>
 #include <optional>
@@ -60,7 +62,8 @@ struct PoseTrackingResult {
   double supportSdPx = 0.0;                // PoseSupport: reprojection SD from the matches alone
   double rollingShutterReadout = 0.0;      // the readout this frame was corrected with
   int corners = 0, matchesA = 0, matchesB = 0, threeView = 0, inliers = 0;
-  int distinctiveInliers = 0;  // inliers on distinctive structure (DistinctiveCorners)
+  int distinctiveInliers = 0;    // inliers on distinctive structure (DistinctiveCorners)
+  int keypointMeasurements = 0;  // keypoint-layer terms added (wide_baseline.keypoint_points)
   // The check of the pose (PoseVerifier): distinctive map points it projects into the frame, and
   // how many of them the frame confirmed; verificationFailed: the frame is lost by that check.
   int verifyCheckable = 0, verifyConfirmed = 0;

@@ -27,6 +27,20 @@ TEST(MeasurementReliability, EveryFactorIsOneUntilWarmedUpOrWhenOff) {
   EXPECT_EQ(observed(2.0, 100).varianceFactor(10), 1.0);  // out of range
 }
 
+// Growing keeps what the sources showed (new sources start unobserved: factor 1, the average);
+// shrinking forgets the dropped sources' observations, from the average too.
+TEST(MeasurementReliability, ResizingKeepsTheRemainingSourcesObservations) {
+  MeasurementReliability r = observed(2.0, 2000);
+  const double bad = r.varianceFactor(0);
+  r.resize(12);
+  EXPECT_EQ(r.sources(), 12u);
+  EXPECT_DOUBLE_EQ(r.varianceFactor(0), bad);
+  EXPECT_NEAR(r.varianceFactor(11), 1.0, 1e-12);  // prior only: the average itself
+  r.resize(1);                                    // only the bad source is left: it is the average
+  EXPECT_EQ(r.observations(), 2000);
+  EXPECT_NEAR(r.varianceFactor(0), 1.0, 1e-12);
+}
+
 // The bad source's variance factor tends to its measured ratio (4 against 1, i.e. 4 / 1.3 and
 // 1 / 1.3 of the average 1.3); with two prior observations and 20 of its own it is pulled
 // toward the average by 2 / 22 of the way.

@@ -1,0 +1,104 @@
+#include "engine/tracking/KeypointMeasurer.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <opencv2/calib3d.hpp>
+#include <random>
+#include <utility>
+
+#include "engine/core/Error.hpp"
+#include "engine/geometry/AffineFit.hpp"
+
+namespace reftrack {
+
+namespace {
+
+// The points whose projections give a point's local warp: it and these nearest of its reference.
+constexpr int kNeighbours = 6;
+
+}  // namespace
+
+KeypointMeasurer::KeypointMeasurer(PinholeCamera camera, std::vector<MeasurableKeypoint> points,
+                                   const cv::Mat& grayA, const cv::Mat& grayB,
+                                   PatchAlignerParams params)
+    : camera_(std::move(camera)), points_(std::move(points)), aligner_(params) {
+  if (grayA.type() != CV_8UC1 || grayB.type() != CV_8UC1)
+    throw Error("KeypointMeasurer: references must be 8-bit grey");
+  grays_[0] = grayA;
+  grays_[1] = grayB;
+  neighbours_.resize(points_.size());
+  std::vector<std::pair<float, int>> byDistance;
+  for (std::size_t i = 0; i < points_.size(); ++i) {
+    byDistance.clear();
+    for (std::size_t j = 0; j < points_.size(); ++j) {
+      if (j == i || points_[j].reference != points_[i].reference) continue;
+      const cv::Point2f d = points_[j].pixel - points_[i].pixel;
+      byDistance.emplace_back(d.dot(d), static_cast<int>(j));
+    }
+    const std::size_t take = std::min<std::size_t>(kNeighbours, byDistance.size());
+    std::partial_sort(byDistance.begin(), byDistance.begin() + static_cast<long>(take),
+                      byDistance.end());
+    for (std::size_t j = 0; j < take; ++j) neighbours_[i].push_back(byDistance[j].second);
+  }
+  order_.resize(points_.size());
+  std::iota(order_.begin(), order_.end(), 0);
+  std::shuffle(order_.begin(), order_.end(), std::mt19937(33));
+}
+
+std::vector<KeypointMeasurement> KeypointMeasurer::measure(const cv::Mat& gray8,
+                                                           const RigidPose& T_Ak, int cap) const {
+  std::vector<KeypointMeasurement> out;
+  if (points_.empty()) return out;
+  if (gray8.type() != CV_8UC1) throw Error("KeypointMeasurer: the frame must be 8-bit grey");
+  // Every point's projection through the lens in one call (NaN behind the camera).
+  std::vector<cv::Point3d> inCamera(points_.size());
+  for (std::size_t i = 0; i < points_.size(); ++i) {
+    const Eigen::Vector3d X = T_Ak * points_[i].pointA;
+    inCamera[i] = {X.x(), X.y(), X.z()};
+  }
+  std::vector<cv::Point2d> projected;
+  cv::projectPoints(inCamera, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0), camera_.Kcv(),
+                    camera_.distortion(), projected);
+  for (std::size_t i = 0; i < projected.size(); ++i)
+    if (!(inCamera[i].z > 1e-6)) projected[i] = {NAN, NAN};
+  const double margin = aligner_.params().halfWindow + aligner_.params().maxShiftPx + 2.0;
+  std::vector<cv::Point2d> src, dst;
+  int tried = 0;
+  for (const int visit : order_) {
+    if (cap > 0 && tried >= cap) break;
+    const auto i = static_cast<std::size_t>(visit);
+    const cv::Point2d pK = projected[i];
+    if (!(pK.x >= margin && pK.y >= margin && pK.x < gray8.cols - margin &&
+          pK.y < gray8.rows - margin))
+      continue;
+    const MeasurableKeypoint& p = points_[i];
+    src.assign(1, cv::Point2d(p.pixel));
+    dst.assign(1, pK);
+    for (int j : neighbours_[i]) {
+      const cv::Point2d q = projected[static_cast<std::size_t>(j)];
+      if (!std::isfinite(q.x)) continue;
+      src.emplace_back(points_[static_cast<std::size_t>(j)].pixel);
+      dst.push_back(q);
+    }
+    cv::Matx33d referenceToK;
+    const auto pairAt = [&](int j) {
+      const auto k = static_cast<std::size_t>(j);
+      return std::pair<cv::Point2d, cv::Point2d>(src[k], dst[k]);
+    };
+    if (fitAffine(static_cast<int>(src.size()), pairAt, referenceToK) != AffineFit::Fitted)
+      continue;
+    const cv::Matx22d toK(referenceToK(0, 0), referenceToK(0, 1), referenceToK(1, 0),
+                          referenceToK(1, 1));
+    const cv::Matx22d J = toK.inv();  // frame offsets -> reference offsets
+    ++tried;
+    const std::optional<PatchAlignment> a =
+        aligner_.align(grays_[p.reference], cv::Point2d(p.pixel), J, gray8, pK);
+    if (!a) continue;
+    out.push_back({visit, a->position,
+                   cv::Point2f(static_cast<float>(pK.x), static_cast<float>(pK.y)), a->sigmaPx});
+  }
+  return out;
+}
+
+}  // namespace reftrack
