@@ -43,9 +43,7 @@ void WideBaselineParams::fields(Self& p, const Field& field) {
   field("align_half_window", p.alignHalfWindow, Range{1, 32})
       .help("n: the alignment's windows are (2n+1) x (2n+1) pixels");
   field("keypoint_points", p.keypointPointsAt320x240, Range{0, 1000000})
-      .help(
-          "Keypoint-layer 3D points also measured per frame by Lucas-Kanade (at 320x240, scaled); "
-          "0: off (more accurate on some clips, 1.5-1.8x slower)");
+      .help("Keypoint-layer points also measured per frame (at 320x240, scaled); 0: off (slower)");
   field("keypoint_sigma_px", p.keypointSigmaPx, Range{1e-3, 100.0})
       .help("Assumed SD of a keypoint measurement (pixels), its weight in the pose");
   field("keypoint_half_window", p.keypointHalfWindow, Range{1, 32})
