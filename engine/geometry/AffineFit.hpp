@@ -5,6 +5,8 @@
 #include <Eigen/Dense>
 #include <cmath>
 #include <opencv2/core.hpp>
+#include <utility>
+#include <vector>
 
 namespace reftrack {
 
@@ -44,6 +46,24 @@ AffineFit fitAffine(int count, const PairAt& pair, cv::Matx33d& A) {
   A = cv::Matx33d(a11, a12, X(2, 0) - a11 * mean.x - a12 * mean.y, a21, a22,
                   X(2, 1) - a21 * mean.x - a22 * mean.y, 0, 0, 1);
   return AffineFit::Fitted;
+}
+
+// The local affine map (reference pixels -> frame) at point i, as the pose check and the keypoint
+// measurements warp a reference window: through i's reference pixel and projection and those of
+// its neighbours whose projection is finite. referencePixel(k) gives point k's reference pixel;
+// `pairs` is scratch storage, reused across calls.
+template <class PixelAt>
+AffineFit fitLocalAffine(std::size_t i, const std::vector<int>& neighbours,
+                         const PixelAt& referencePixel, const std::vector<cv::Point2d>& projected,
+                         std::vector<std::pair<cv::Point2d, cv::Point2d>>& pairs, cv::Matx33d& A) {
+  pairs.assign(1, {cv::Point2d(referencePixel(i)), projected[i]});
+  for (int j : neighbours) {
+    const auto k = static_cast<std::size_t>(j);
+    if (std::isfinite(projected[k].x))
+      pairs.emplace_back(cv::Point2d(referencePixel(k)), projected[k]);
+  }
+  return fitAffine(
+      static_cast<int>(pairs.size()), [&](int j) { return pairs[static_cast<std::size_t>(j)]; }, A);
 }
 
 }  // namespace reftrack

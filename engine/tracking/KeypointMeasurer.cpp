@@ -63,7 +63,7 @@ std::vector<KeypointMeasurement> KeypointMeasurer::measure(const cv::Mat& gray8,
   for (std::size_t i = 0; i < projected.size(); ++i)
     if (!(inCamera[i].z > 1e-6)) projected[i] = {NAN, NAN};
   const double margin = aligner_.params().halfWindow + aligner_.params().maxShiftPx + 2.0;
-  std::vector<cv::Point2d> src, dst;
+  std::vector<std::pair<cv::Point2d, cv::Point2d>> pairs;
   int tried = 0;
   for (const int visit : order_) {
     if (cap > 0 && tried >= cap) break;
@@ -73,20 +73,10 @@ std::vector<KeypointMeasurement> KeypointMeasurer::measure(const cv::Mat& gray8,
           pK.y < gray8.rows - margin))
       continue;
     const MeasurableKeypoint& p = points_[i];
-    src.assign(1, cv::Point2d(p.pixel));
-    dst.assign(1, pK);
-    for (int j : neighbours_[i]) {
-      const cv::Point2d q = projected[static_cast<std::size_t>(j)];
-      if (!std::isfinite(q.x)) continue;
-      src.emplace_back(points_[static_cast<std::size_t>(j)].pixel);
-      dst.push_back(q);
-    }
     cv::Matx33d referenceToK;
-    const auto pairAt = [&](int j) {
-      const auto k = static_cast<std::size_t>(j);
-      return std::pair<cv::Point2d, cv::Point2d>(src[k], dst[k]);
-    };
-    if (fitAffine(static_cast<int>(src.size()), pairAt, referenceToK) != AffineFit::Fitted)
+    const auto pixelOf = [&](std::size_t k) { return points_[k].pixel; };
+    if (fitLocalAffine(i, neighbours_[i], pixelOf, projected, pairs, referenceToK) !=
+        AffineFit::Fitted)
       continue;
     const cv::Matx22d toK(referenceToK(0, 0), referenceToK(0, 1), referenceToK(1, 0),
                           referenceToK(1, 1));

@@ -155,7 +155,7 @@ PoseCheck PoseVerifier::check(const cv::Mat& gray8, const RigidPose& T_Ak) const
   });
   const int side = 2 * n + 1, count = side * side;
   std::vector<float> warped(static_cast<std::size_t>(count));
-  std::vector<cv::Point2d> src, dst;
+  std::vector<std::pair<cv::Point2d, cv::Point2d>> pairs;
   for (const int visit : order_) {
     if (out.checkable >= maxChecked) break;
     const auto i = static_cast<std::size_t>(visit);
@@ -164,20 +164,10 @@ PoseCheck PoseVerifier::check(const cv::Mat& gray8, const RigidPose& T_Ak) const
     if (!(pK.x >= margin && pK.y >= margin && pK.x < gray8.cols - margin &&
           pK.y < gray8.rows - margin))
       continue;
-    src.assign(1, cv::Point2d(ref.pixels[i]));
-    dst.assign(1, pK);
-    for (int j : neighbours[i]) {
-      const cv::Point2d q = projected[static_cast<std::size_t>(j)];
-      if (!std::isfinite(q.x)) continue;
-      src.emplace_back(ref.pixels[static_cast<std::size_t>(j)]);
-      dst.push_back(q);
-    }
     cv::Matx33d referenceToK;
-    const auto pairAt = [&](int j) {
-      const auto k = static_cast<std::size_t>(j);
-      return std::pair<cv::Point2d, cv::Point2d>(src[k], dst[k]);
-    };
-    if (fitAffine(static_cast<int>(src.size()), pairAt, referenceToK) != AffineFit::Fitted)
+    const auto pixelOf = [&](std::size_t k) { return ref.pixels[k]; };
+    if (fitLocalAffine(i, neighbours[i], pixelOf, projected, pairs, referenceToK) !=
+        AffineFit::Fitted)
       continue;
     const cv::Matx33d W = referenceToK.inv();  // frame -> reference
     // The frame is read at whole pixels: the reference window is sampled where W puts the whole
