@@ -490,10 +490,11 @@ HomographyTracker::Attempt HomographyTracker::alignedAttempt(const ImagePyramid&
   const HomographyRefiner* refiner = !refiner_   ? nullptr
                                      : level > 0 ? &levelRefiner(level)
                                                  : &*refiner_;
+  RefinedHomography aligned;
   if (refiner) {
     auto refineClock = std::chrono::steady_clock::now();
-    const RefinedHomography r = refiner->refine(work, guide, params_.ransac.minInliers);
-    if (r.success) guide = r.H;
+    aligned = refiner->refine(work, guide, params_.ransac.minInliers);
+    if (aligned.success) guide = aligned.H;
     stageMs[5] += lap(refineClock);
   }
   Attempt a = attempt(work, frameDetector_, ref_, guide, false, stageMs, false, radius);
@@ -501,6 +502,22 @@ HomographyTracker::Attempt HomographyTracker::alignedAttempt(const ImagePyramid&
     Attempt dense =
         attempt(work, frameReacquireDetector_, reacquireRef_, guide, false, stageMs, false, radius);
     if (dense.tracked) a = std::move(dense);
+  }
+  if (!a.tracked && aligned.success &&
+      aligned.inliers >= std::max(params_.ransac.minInliers,
+                                  static_cast<int>(params_.ransac.minInlierRatio * aligned.points))) {
+    // The corners fail where the frame has lost them (a strong blur: Oxford trees 1->6 keeps 44
+    // of 284 reference corners) while the whole-image alignment still holds: its H stands, to
+    // be confirmed by the registration check like any cold one.
+    a.est.success = true;
+    a.est.H = aligned.H;
+    a.est.inlierCount = aligned.inliers;
+    a.inlierRatio = static_cast<double>(aligned.inliers) / aligned.points;
+    a.failure.clear();
+    a.src.clear();
+    a.dst.clear();
+    a.est.inliers.clear();
+    a.tracked = true;
   }
   if (a.tracked && level > 0) {
     // The final refinement on the level too, then everything in full-resolution pixels.

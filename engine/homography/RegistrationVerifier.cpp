@@ -136,8 +136,30 @@ RegistrationCheck RegistrationVerifier::check(const ImagePyramid& frame,
     out.failure = "the homography is degenerate at the frame's centre";
     return out;
   }
-  out.frameLevel = m >= 1.0 ? levelFor(m, size, kMaxLevels) : 0;
-  out.referenceLevel = m < 1.0 ? levelFor(1.0 / m, levels_.front().image.size(), levels()) : 0;
+  const int frameLevel = m >= 1.0 ? levelFor(m, size, kMaxLevels) : 0;
+  const int referenceLevel =
+      m < 1.0 ? levelFor(1.0 / m, levels_.front().image.size(), levels()) : 0;
+  out = checkOnLevels(frame, H, frameLevel, referenceLevel);
+  // A frame blurred against the reference (defocus, motion: Oxford trees 1->6, bikes 1->6) keeps
+  // its coarse texture only: when too few windows find their peak, the pair is compared once
+  // more one level coarser on both sides. The tolerances are set per level in pixels at 320x240,
+  // so they stay the same in full-resolution pixels.
+  if (!out.passed && out.confirmedTooFew && referenceLevel + 1 < levels() &&
+      frameLevel + 1 < kMaxLevels &&
+      static_cast<double>(frame.level(frameLevel + 1).total()) >= kMinLevelPixels) {
+    RegistrationCheck coarser = checkOnLevels(frame, H, frameLevel + 1, referenceLevel + 1);
+    if (coarser.passed) return coarser;
+    out.failure += "; one level coarser: " + coarser.failure;
+  }
+  return out;
+}
+
+RegistrationCheck RegistrationVerifier::checkOnLevels(const ImagePyramid& frame,
+                                                      const cv::Matx33d& H, int frameLevel,
+                                                      int referenceLevel) const {
+  RegistrationCheck out;
+  out.frameLevel = frameLevel;
+  out.referenceLevel = referenceLevel;
   const Level& ref = levels_[static_cast<size_t>(out.referenceLevel)];
   const cv::Mat& image = frame.level(out.frameLevel);
   // Reference-level pixels -> frame-level pixels.
@@ -280,6 +302,7 @@ RegistrationCheck RegistrationVerifier::check(const ImagePyramid& frame,
     }
   const double fraction = static_cast<double>(out.confirmed) / out.measurable;
   if (out.confirmed < params_.minConfirmed || fraction < params_.minConfirmedFraction) {
+    out.confirmedTooFew = true;
     out.failure = "the warped reference matches the frame at only " +
                   std::to_string(out.confirmed) + " of " + std::to_string(out.measurable) +
                   " textured points";

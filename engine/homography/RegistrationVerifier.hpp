@@ -47,6 +47,7 @@ struct RegistrationCheck {
   double offsetPx = 0.0;  // C's largest displacement over the textured part of the overlap
                           // (full-resolution frame pixels): how far off H is there
   int frameLevel = 0, referenceLevel = 0;  // the pyramid levels compared
+  bool confirmedTooFew = false;  // failed for too few confirming points (not spread or offset)
   std::string failure;                     // why it did not pass
 };
 
@@ -64,6 +65,8 @@ class RegistrationVerifier {
   int levels() const { return static_cast<int>(levels_.size()); }
 
  private:
+  RegistrationCheck checkOnLevels(const ImagePyramid& frame, const cv::Matx33d& H, int frameLevel,
+                                  int referenceLevel) const;
   struct Level {
     cv::Mat image;
     std::vector<cv::Point2f> points;  // candidates (the most textured pixel per block)

@@ -48,10 +48,14 @@ struct ExperimentArgs {
   int coldTrials = 200;
   double maxTilt = 50.0;
   double minScale = 0.5, maxScale = 2.0;
-  std::filesystem::path data = "../shared/data/oxford-photometric";
+  std::filesystem::path data = "../shared/data";
   double pairsErrorPx = 3.0;
   double pairsWrongPx = 10.0;
-  bool noViews = false;
+  bool synthetic = false;
+  bool noPeers = false;
+  std::string pairsMetric = "corners";
+  std::string pairsTruth = "given";
+  std::vector<double> pairsScales = {1.0};
   std::filesystem::path savePairs;
   std::vector<std::string> onlySets;
   std::string effects = "none";
@@ -101,44 +105,81 @@ void runCold(const ExperimentArgs& a, cv::Size size, const TrackerParams& params
   std::printf("\n");
 }
 
+// The chosen error of one outcome (NaN when nothing was returned).
+double pairError(const PairOutcome& o, const std::string& metric) {
+  return metric == "overlap" ? o.overlapErrorPx : o.cornerErrorPx;
+}
+
+std::string sizeName(cv::Size s) { return std::to_string(s.width) + "x" + std::to_string(s.height); }
+
 void runPairs(const ExperimentArgs& a, const TrackerParams& params) {
   PairsOptions o;
   o.dataDir = a.data;
   o.noiseSigma = a.noise;
   o.seed = a.seed;
-  o.broadViews = !a.noViews;
+  o.broadViews = a.synthetic;
+  o.hardSets = a.synthetic;
   o.onlySets = a.onlySets;
+  o.peers = !a.noPeers;
+  o.refineTruth = a.pairsTruth == "refined";
+  o.scales = a.pairsScales;
   o.params = params;
   if (!a.savePairs.empty()) {
     saveHomographyPairs(buildHardHomographyPairs(a.data, a.noise, a.seed), a.savePairs);
     std::printf("hard sets written under %s\n", a.savePairs.string().c_str());
   }
   const PairsResult r = runPairsExperiment(o);
+  const std::string& metric = a.pairsMetric;
+  if (o.refineTruth) {
+    // How far ECC moves each given homography: the truth's own error, where it converges.
+    std::printf(
+        "truth check: the given homography refined by OpenCV's ECC (findTransformECC, 5x5 "
+        "Gaussian): distance moved at the reference's corners (px) and ECC correlation\n");
+    for (size_t i = 0; i < r.pairs.size(); ++i) {
+      if (!r.pairs[i].real || r.pairs[i].sequence.find('@') != std::string::npos) continue;
+      const RefinedTruth& t = r.truthChecks[i];
+      if (t.converged)
+        std::printf("  %-10s %-6s moved %6.2f px  correlation %.3f%s\n",
+                    r.pairs[i].sequence.c_str(), r.pairs[i].label.c_str(), t.movedPx,
+                    t.correlation, t.movedPx > 1.0 ? "  <- the given H is off" : "");
+      else
+        std::printf("  %-10s %-6s ECC did not converge: the given H kept\n",
+                    r.pairs[i].sequence.c_str(), r.pairs[i].label.c_str());
+    }
+    std::printf("\n");
+  }
   std::printf(
-      "image pairs with known homographies under %s (registered: corner error <= %.1f px; wrong: "
-      "a homography returned with an error > %.1f px; ms: thread CPU per registration, median, "
-      "one thread); reftrack keypoints: %s\n",
-      a.data.string().c_str(), a.pairsErrorPx, a.pairsWrongPx,
-      keypointLayerName(params.homography.keypoints).c_str());
-  // One table row per (group, method): a group is a kind of pair, a pair set, or a union of sets.
+      "image pairs with known homographies under %s; error: %s; registered: error <= %.1f px; "
+      "wrong: a homography returned with an error > %.1f px; off: returned, in between; ms: wall "
+      "clock per cold registration, median, one thread (cpu: thread CPU); reftrack keypoints: "
+      "%s\n",
+      (a.data.string() + (o.refineTruth ? " (truth: the given H refined by ECC)" : "")).c_str(),
+      metric == "overlap" ? "mean over the reference points the frame sees (overlap)"
+                          : "mean at the reference image's four corners (Oxford convention)",
+      a.pairsErrorPx, a.pairsWrongPx, keypointLayerName(params.homography.keypoints).c_str());
+  // One table row per (group, method): a group is a pair set, a frame size or a union of sets.
   const auto table = [&](const char* heading, const std::vector<std::string>& groups,
                          const std::function<bool(const HomographyPair&, const std::string&)>& in) {
-    std::printf("%-22s %-13s %-12s %-7s %-9s %-15s %-15s %-9s\n", heading, "method", "registered",
-                "wrong", "off", "mean err (px)", "median err", "ms_med");
+    std::printf("%-22s %-13s %-12s %-7s %-5s %-6s %-13s %-11s %-8s %-8s\n", heading, "method",
+                "registered", "wrong", "off", "lost", "mean err(px)", "median err", "ms_med",
+                "cpu_med");
     for (const std::string& group : groups) {
       for (const PairsMethod& m : r.methods) {
-        int n = 0, ok = 0, wrong = 0, off = 0;
-        std::vector<double> errors, ms;
+        int n = 0, ok = 0, wrong = 0, off = 0, lost = 0;
+        std::vector<double> errors, ms, cpu;
         for (size_t i = 0; i < r.pairs.size(); ++i) {
           if (!in(r.pairs[i], group)) continue;
           ++n;
           const PairOutcome& o2 = m.outcomes[i];
-          ms.push_back(o2.milliseconds);
-          if (!o2.found) continue;
-          if (o2.cornerErrorPx <= a.pairsErrorPx) {
+          ms.push_back(o2.wallMs);
+          cpu.push_back(o2.milliseconds);
+          const double e = pairError(o2, metric);
+          if (!o2.found) {
+            ++lost;
+          } else if (e <= a.pairsErrorPx) {
             ++ok;
-            errors.push_back(o2.cornerErrorPx);
-          } else if (o2.cornerErrorPx > a.pairsWrongPx) {
+            errors.push_back(e);
+          } else if (!(e <= a.pairsWrongPx)) {
             ++wrong;
           } else {
             ++off;
@@ -149,54 +190,48 @@ void runPairs(const ExperimentArgs& a, const TrackerParams& params) {
         for (double e : errors) mean += e / static_cast<double>(errors.size());
         std::sort(errors.begin(), errors.end());
         std::sort(ms.begin(), ms.end());
-        std::printf("%-22s %-13s %4d/%-7d %-7d %-9d %-15.4f %-15.4f %-9.2f\n", group.c_str(),
-                    m.name.c_str(), ok, n, wrong, off, mean,
-                    errors.empty() ? NAN : errors[errors.size() / 2], ms[ms.size() / 2]);
+        std::sort(cpu.begin(), cpu.end());
+        std::printf("%-22s %-13s %4d/%-7d %-7d %-5d %-6d %-13.3f %-11.3f %-8.1f %-8.1f\n",
+                    group.c_str(), m.name.c_str(), ok, n, wrong, off, lost, mean,
+                    errors.empty() ? NAN : errors[errors.size() / 2], ms[ms.size() / 2],
+                    cpu[cpu.size() / 2]);
       }
     }
     std::printf("\n");
   };
-  table("kind", {"photometric", "viewpoint", "zoom-rotation", "all"},
-        [](const HomographyPair& p, const std::string& g) { return g == "all" || p.kind == g; });
-  std::vector<std::string> sequences;
-  for (const HomographyPair& p : r.pairs)
-    if (std::find(sequences.begin(), sequences.end(), p.sequence) == sequences.end())
-      sequences.push_back(p.sequence);
+  std::vector<std::string> sequences, sizes;
+  const auto addOnce = [](std::vector<std::string>& v, const std::string& x) {
+    if (std::find(v.begin(), v.end(), x) == v.end()) v.push_back(x);
+  };
+  for (const HomographyPair& p : r.pairs) {
+    addOnce(sequences, p.sequence);
+    if (p.real) addOnce(sizes, sizeName(p.frame.size()));
+  }
   table("pair set", sequences,
         [](const HomographyPair& p, const std::string& g) { return p.sequence == g; });
-  // The unions the targets count: the real photometric sets, the hard sets, and the
-  // eight sets (real photometric + the analogues of graf, wall, boat and bark).
+  table("frame size (real)", sizes, [](const HomographyPair& p, const std::string& g) {
+    return p.real && sizeName(p.frame.size()) == g;
+  });
+  std::vector<std::string> unions = {"all real pairs"};
+  if (a.synthetic) unions.insert(unions.end(), {"synthesised views", "simulated hard sets"});
   const std::vector<std::string>& hard = hardPairSetNames();
-  const auto isHard = [&](const HomographyPair& p) {
-    return std::find(hard.begin(), hard.end(), p.sequence) != hard.end();
-  };
-  const auto isHeldOutAnalogue = [](const HomographyPair& p) {
-    return p.sequence == "graf-sim" || p.sequence == "wall-sim" || p.sequence == "boat-sim" ||
-           p.sequence == "bark-sim";
-  };
-  table("union of sets",
-        {"real photometric", "graf/wall/boat/bark-sim", "eight sets", "all hard sets",
-         "synthesised views", "all pairs"},
-        [&](const HomographyPair& p, const std::string& g) {
-          const bool real = p.kind == "photometric";
-          if (g == "real photometric") return real;
-          if (g == "graf/wall/boat/bark-sim") return isHeldOutAnalogue(p);
-          if (g == "eight sets") return real || isHeldOutAnalogue(p);
-          if (g == "all hard sets") return isHard(p);
-          if (g == "synthesised views") return !real && !isHard(p);
-          return true;
-        });
+  table("union of sets", unions, [&](const HomographyPair& p, const std::string& g) {
+    const bool isHard = std::find(hard.begin(), hard.end(), p.sequence) != hard.end();
+    if (g == "all real pairs") return p.real;
+    if (g == "simulated hard sets") return isHard;
+    return !p.real && !isHard;
+  });
   // The pairs the first method (reftrack) does not register within the bound, with every
-  // method's corner error (- = no homography returned) and reftrack's reason.
-  std::printf("pairs reftrack misses (corner error per method, - = none returned):\n");
+  // method's error (- = no homography returned) and reftrack's reason.
+  std::printf("pairs reftrack misses (%s error per method, - = none returned):\n", metric.c_str());
   for (size_t i = 0; i < r.pairs.size(); ++i) {
     const PairOutcome& own = r.methods.front().outcomes[i];
-    if (own.found && own.cornerErrorPx <= a.pairsErrorPx) continue;
+    if (own.found && pairError(own, metric) <= a.pairsErrorPx) continue;
     std::printf("  %-14s %-34s", r.pairs[i].sequence.c_str(), r.pairs[i].label.c_str());
     for (const PairsMethod& m : r.methods) {
       const PairOutcome& o2 = m.outcomes[i];
       if (o2.found)
-        std::printf(" %s %.2f", m.name.c_str(), o2.cornerErrorPx);
+        std::printf(" %s %.2f", m.name.c_str(), pairError(o2, metric));
       else
         std::printf(" %s -", m.name.c_str());
     }
@@ -207,10 +242,9 @@ void runPairs(const ExperimentArgs& a, const TrackerParams& params) {
 }
 
 void runVerify(const ExperimentArgs& a, const TrackerParams& params) {
-  std::vector<HomographyPair> pairs = buildHomographyPairs(a.data, a.noise, a.seed);
-  if (a.noViews)
-    std::erase_if(pairs, [](const HomographyPair& p) { return p.kind != "photometric"; });
-  for (HomographyPair& p : buildHardHomographyPairs(a.data, a.noise, a.seed))
+  std::vector<HomographyPair> pairs = buildHomographyPairs(a.data, a.noise, a.seed, a.synthetic);
+  if (a.synthetic)
+    for (HomographyPair& p : buildHardHomographyPairs(a.data, a.noise, a.seed))
     pairs.push_back(std::move(p));
   if (!a.onlySets.empty())
     std::erase_if(pairs, [&](const HomographyPair& p) {
@@ -388,13 +422,14 @@ CommandRegistration registerExperimentHomographyCommand(CLI::App& parent) {
   sub->add_option("--max-scale", args->maxScale, "Cold: largest scale")
       ->check(CLI::Range(0.25, 4.0))
       ->capture_default_str();
-  sub->add_option("--data", args->data, "Pairs: folder of Oxford-style sequences")
+  sub->add_option("--data", args->data,
+                  "Pairs: a folder of real pairs (img1 + imgN + H1toNp[.xml]) or of such folders")
       ->capture_default_str();
-  sub->add_option("--pairs-error", args->pairsErrorPx, "Pairs: registered below this corner error")
+  sub->add_option("--pairs-error", args->pairsErrorPx, "Pairs: registered up to this error (px)")
       ->check(CLI::Range(0.1, 100.0))
       ->capture_default_str();
   sub->add_option("--pairs-wrong", args->pairsWrongPx,
-                  "Pairs: a registration reported with a larger corner error is wrong")
+                  "Pairs: a registration returned with a larger error is wrong (px)")
       ->check(CLI::Range(0.1, 1000.0))
       ->capture_default_str();
   sub->add_option("--save-pairs", args->savePairs,
@@ -403,8 +438,26 @@ CommandRegistration registerExperimentHomographyCommand(CLI::App& parent) {
   sub->add_option("--sets", args->onlySets,
                   "Pairs: register only these pair sets (names as in the table, e.g. wall-sim "
                   "bikes)");
-  sub->add_flag("--no-views", args->noViews,
-                "Pairs: leave out the 18 views synthesised from each sequence's img1");
+  sub->add_flag("--synthetic", args->synthetic,
+                "Pairs and verify: add views synthesised from each sequence's img1 and the "
+                "simulated hard sets (test material, not evidence)");
+  sub->add_flag("--no-peers", args->noPeers, "Pairs: reftrack only (no SIFT, AKAZE, ORB)");
+  sub->add_option("--metric", args->pairsMetric,
+                  "Pairs: corners (mean error at the reference's corners, the Oxford convention) "
+                  "or overlap (mean over the reference points the frame sees)")
+      ->check(CLI::IsMember({"corners", "overlap"}))
+      ->capture_default_str();
+  sub->add_option("--truth", args->pairsTruth,
+                  "Pairs: given (the data set's homographies) or refined (each refined by "
+                  "OpenCV's ECC from the given one where it converges; prints how far it moved)")
+      ->check(CLI::IsMember({"given", "refined"}))
+      ->capture_default_str();
+  sub->add_option("--scales", args->pairsScales,
+                  "Pairs: register every real pair with both images resampled by each of these "
+                  "factors (e.g. 0.4 1 2: other cameras' sizes; sets named <set>@<scale>)")
+      ->check(CLI::Range(0.1, 4.0))
+      ->delimiter(',')
+      ->capture_default_str();
   sub->add_option("--effects", args->effects,
                   "Static and rotation: webcam effects (none, webcam or a comma-separated list of "
                   "photos, blur, rolling-shutter, exposure, flicker, vignetting, noise, defocus, "
@@ -432,16 +485,17 @@ CommandRegistration registerExperimentHomographyCommand(CLI::App& parent) {
       "(reset before each; --size defaults to 640x480 here); success = tracked with a "
       "frame-corner\n"
       "error <= 1 px, wrong = tracked with a larger one; tables by tilt and by scale.\n"
-      "pairs: every sequence folder under --data (img1..6.png, H1toNp.xml): the real pairs\n"
-      "img1 -> imgN (any sizes), img1 warped by exact homographies (<seq>-views: tilt 20-60 deg;\n"
-      "zoom 0.5-3.5 with rotation; --no-views leaves them out) and the hard sets: graf-sim (ubc\n"
-      "20-60 deg), wall-sim (simulated brick wall 20-60 deg, reference 1000x700, frames 880x680),\n"
-      "boat-sim (bikes zoom 1.3-2.9x), bark-sim (trees zoom 1.4-4x), tiles-sim (simulated tiles\n"
-      "15-40 deg, 1-2.5x, 800x600 -> 640x480), each frame relit, defocused, noisy and JPEG\n"
-      "compressed; registered by reftrack (cold),\n"
-      "reftrack without keypoints, and OpenCV SIFT, AKAZE and ORB + ratio test + findHomography\n"
-      "RANSAC. Registered: corner error <= --pairs-error; off: up to --pairs-wrong; wrong: more.\n"
-      "One thread; ms = thread CPU per registration.");
+      "pairs: every sequence folder under --data (itself or up to three levels down: img1 and\n"
+      "img2..img9 as .png/.ppm/.pgm/.jpg, H1toNp or H1toNp.xml, x_N ~ H1toNp x_1): its real pairs\n"
+      "img1 -> imgN (any sizes), registered cold by reftrack, reftrack without keypoints, and\n"
+      "OpenCV SIFT, AKAZE and ORB + ratio test + findHomography RANSAC (--no-peers: reftrack only).\n"
+      "Error (--metric): corners = mean at img1's four corners, estimate vs truth; overlap = mean\n"
+      "over a 32x24 grid of img1's points that the frame sees. Registered: error <= --pairs-error;\n"
+      "wrong: returned with an error > --pairs-wrong; off: in between. --synthetic adds views\n"
+      "synthesised from img1 (tilt 20-60 deg; zoom 0.5-3.5 with rotation) and the simulated hard\n"
+      "sets (graf-sim, wall-sim, boat-sim, bark-sim, tiles-sim; they need ubc, bikes and trees\n"
+      "directly under --data): test material, not evidence. One thread; tables per set, per frame\n"
+      "size and over all real pairs; ms = wall clock, cpu = thread CPU per registration.");
   return {sub, [args, sub] {
             cv::setNumThreads(1);
             const bool coldSize = args->experiment == "cold" && sub->count("--size") == 0;

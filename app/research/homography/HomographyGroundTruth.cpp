@@ -75,6 +75,19 @@ double frameCornerError(const cv::Matx33d& estimatedH, const cv::Matx33d& trueH,
   return sum / 4.0;
 }
 
+double referenceCornerError(const cv::Matx33d& estimatedH, const cv::Matx33d& trueH,
+                            cv::Size referenceSize) {
+  const double w = referenceSize.width - 1.0, h = referenceSize.height - 1.0;
+  double sum = 0;
+  for (const cv::Point2d c :
+       {cv::Point2d(0, 0), cv::Point2d(w, 0), cv::Point2d(w, h), cv::Point2d(0, h)}) {
+    const cv::Point2d est = transferPoint(estimatedH, c), truth = transferPoint(trueH, c);
+    const double e = std::hypot(est.x - truth.x, est.y - truth.y);
+    sum += std::isfinite(e) ? e : std::numeric_limits<double>::infinity();
+  }
+  return sum / 4.0;
+}
+
 std::vector<cv::Point2d> annotationGrid(cv::Size size, int cols, int rows) {
   std::vector<cv::Point2d> out;
   for (int j = 0; j < rows; ++j)

@@ -24,6 +24,11 @@ double meanTransferDeviation(const cv::Matx33d& estimatedH, const cv::Matx33d& t
 // - c| (where content drawn from the reference lands); the mean of the four, in pixels.
 double frameCornerError(const cv::Matx33d& estimatedH, const cv::Matx33d& trueH, cv::Size size);
 
+// Registration error at the reference's four corners (the Oxford benchmark's convention): the
+// mean of |estimated H c - true H c| over the reference image's corners c, in frame pixels.
+double referenceCornerError(const cv::Matx33d& estimatedH, const cv::Matx33d& trueH,
+                            cv::Size referenceSize);
+
 // A cols x rows grid of points spanning the image with a margin of one cell / 2 (annotation
 // positions for the rotation sweep).
 std::vector<cv::Point2d> annotationGrid(cv::Size size, int cols, int rows);

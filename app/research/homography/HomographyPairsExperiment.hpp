@@ -1,13 +1,13 @@
 #pragma once
-// Registration of image pairs with known homographies: for every sequence folder of a data
-// directory laid out like the Oxford affine benchmark (img1.png..img6.png, H1to{N}p.xml), the
-// real pairs img1 -> imgN, plus views synthesised from img1 with exact homographies — a plane
-// tilted out of the image by 20-60 degrees and zoom 0.5-3.5 with in-plane rotation — and the
-// hard sets of issue 26 (HardHomographyPairs.hpp: strong viewpoint, zoom to 4x, repeated brick
-// and tile texture, frames of another size than the reference). The tracker (cold: reset before
-// each pair) and plain OpenCV baselines (OpenCvFeatureBaseline) register the very same pairs,
-// each timed in thread CPU. Error: mean registration error at the frame's four corners
-// (frameCornerError).
+// Registration of image pairs with known homographies: every sequence folder found under a data
+// directory laid out like the Oxford affine benchmark (img1 + img2..img6 as .png/.ppm/.pgm/.jpg,
+// H1toNp or H1toNp.xml, x_N ~ H1toNp x_1), its real pairs img1 -> imgN. On request
+// (syntheticViews / hardSets) also views synthesised from img1 with exact homographies and the
+// simulated hard sets (HardHomographyPairs.hpp) — kept for tests, no longer evidence: real
+// photographs do not behave like them. The tracker (cold: reset before each pair) and plain
+// OpenCV baselines (OpenCvFeatureBaseline) register the very same pairs, each timed (wall clock
+// and thread CPU, one thread). Errors: at the reference's four corners (referenceCornerError, the
+// Oxford convention) and over the overlap (meanTransferDeviation on a reference grid).
 #include <cstdint>
 #include <filesystem>
 #include <opencv2/core.hpp>
@@ -16,21 +16,30 @@
 
 #include "app/research/homography/HomographyPair.hpp"
 #include "app/research/homography/SyntheticViews.hpp"
+#include "app/research/homography/TruthRefinement.hpp"
 #include "engine/config/TrackerParams.hpp"
 
 namespace reftrack::app {
 
-// All pairs of every sequence folder under dataDir (sorted by name): the real pairs (sequence:
-// the folder's name; frames of any size), then its synthesised views (sequence "<name>-views").
-// Throws reftrack::Error when there is none.
+// The sequence folders under dataDir (itself when it holds img1, else its sub-folders up to three
+// levels down that do), sorted by path. Throws reftrack::Error when dataDir is not a folder.
+std::vector<std::filesystem::path> findPairSequences(const std::filesystem::path& dataDir);
+
+// All real pairs of every sequence folder under dataDir (sequence: the folder's name, kind: its
+// parent folder's name; frames of any size), each followed, when syntheticViews, by 18 views
+// synthesised from its img1 (sequence "<name>-views"). Throws reftrack::Error when there is no
+// sequence, or an image or homography file cannot be read.
 std::vector<HomographyPair> buildHomographyPairs(const std::filesystem::path& dataDir,
-                                                 double noiseSigma, std::uint64_t seed);
+                                                 double noiseSigma, std::uint64_t seed,
+                                                 bool syntheticViews = false);
 
 struct PairOutcome {
   bool found = false;
-  double cornerErrorPx = 0.0;  // NaN when not found
-  double milliseconds = 0.0;   // thread CPU time of the registration
-  std::string failure;         // reftrack: why it was not registered
+  double cornerErrorPx = 0.0;   // at the reference's corners; NaN when not found
+  double overlapErrorPx = 0.0;  // over the reference points the frame sees; NaN when not found
+  double milliseconds = 0.0;    // thread CPU time of the registration
+  double wallMs = 0.0;          // wall-clock time of the registration
+  std::string failure;          // reftrack: why it was not registered
 };
 
 struct PairsMethod {
@@ -42,19 +51,29 @@ struct PairsOptions {
   std::filesystem::path dataDir;
   double noiseSigma = 2.0;
   std::uint64_t seed = 1;
-  bool broadViews = true;  // the 18 views synthesised from each sequence's img1 ("<seq>-views")
-  bool hardSets = true;    // the hard sets (HardHomographyPairs.hpp)
+  bool broadViews = false;  // the 18 views synthesised from each sequence's img1 ("<seq>-views")
+  bool hardSets = false;    // the simulated hard sets (HardHomographyPairs.hpp)
   std::vector<std::string> onlySets;  // when not empty: only the pairs of these sets
   int wallSupersample = 4;            // rays per pixel (squared) of the simulated walls (1..8; see
                                       // buildHardHomographyPairs)
+  bool peers = true;                  // also the OpenCV peers (SIFT, AKAZE, ORB)
+  // The given homographies of the real pairs replaced by their ECC refinement
+  // (refineTruthByEcc) where it converges.
+  bool refineTruth = false;
+  // Each real pair registered at these scales of both images (resampled: area below 1, cubic
+  // above; the homography carried exactly), as set "<name>@<scale>" unless the scale is 1.
+  std::vector<double> scales = {1.0};
   TrackerParams params;
   void check() const;  // throws reftrack::Error naming the bad field
 };
 
 struct PairsResult {
   std::vector<HomographyPair> pairs;
+  // With refineTruth: per pair, the ECC refinement of its given homography (at scale 1; empty
+  // entries for synthesised pairs).
+  std::vector<RefinedTruth> truthChecks;
   // "reftrack" (params as given), "reftrack-ncc" (the keypoint layer off: unguided correlation
-  // only), then the OpenCV baselines "sift", "akaze", "orb".
+  // only), then, with peers, the OpenCV baselines "sift", "akaze", "orb".
   std::vector<PairsMethod> methods;
 };
 

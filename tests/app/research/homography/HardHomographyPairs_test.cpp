@@ -43,7 +43,7 @@ TEST(HardHomographyPairs, BuildsTheSimulatedSetsWithExactHomographies) {
   const std::vector<HomographyPair> back = buildHomographyPairs(dir, 0.0, 1);
   int real = 0;
   for (const HomographyPair& p : back) {
-    if (p.kind != "photometric") continue;
+    if (!p.real) continue;
     ++real;
     // imgN of a set is its (N - 1)-th pair.
     const int n = std::stoi(p.label.substr(3)) - 2;

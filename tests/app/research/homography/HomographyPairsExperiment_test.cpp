@@ -70,13 +70,16 @@ TEST(HomographyPairsExperiment, BuildsAndRegistersPairsOfASequenceFolder) {
     cv::FileStorage fs((dir / "seq" / "H1to2p.xml").string(), cv::FileStorage::WRITE);
     fs << "H12" << cv::Mat(H12);
   }
-  const std::vector<HomographyPair> pairs = buildHomographyPairs(dir, 2.0, 1);
+  // Real pairs only by default; the synthesised views on request.
+  ASSERT_EQ(buildHomographyPairs(dir, 2.0, 1).size(), 1u);
+  const std::vector<HomographyPair> pairs = buildHomographyPairs(dir, 2.0, 1, true);
   ASSERT_EQ(pairs.size(), 19u);  // 1 real + 10 viewpoint + 8 zoom-rotation
-  EXPECT_EQ(pairs[0].kind, "photometric");
+  EXPECT_TRUE(pairs[0].real);
+  EXPECT_EQ(pairs[0].kind, dir.filename().string());
   EXPECT_LT(cv::norm(pairs[0].truth - H12), 1e-12);
   int viewpoint = 0, zoom = 0;
   for (const HomographyPair& p : pairs) {
-    EXPECT_EQ(p.sequence, p.kind == "photometric" ? "seq" : "seq-views");
+    EXPECT_EQ(p.sequence, p.real ? "seq" : "seq-views");
     EXPECT_EQ(p.frame.size(), size);
     viewpoint += p.kind == "viewpoint" ? 1 : 0;
     zoom += p.kind == "zoom-rotation" ? 1 : 0;
@@ -86,7 +89,7 @@ TEST(HomographyPairsExperiment, BuildsAndRegistersPairsOfASequenceFolder) {
 
   PairsOptions o;
   o.dataDir = dir;
-  o.hardSets = false;  // HardHomographyPairs_test covers those
+  o.broadViews = true;
   const PairsResult r = runPairsExperiment(o);
   ASSERT_EQ(r.methods.size(), 5u);
   EXPECT_EQ(r.methods[0].name, "reftrack");
@@ -123,7 +126,7 @@ TEST(HomographyPairsExperiment, RegistersTheRepeatedTextureSetsWithoutAWrongRegi
   cv::imwrite((dir / "seq" / "img1.png").string(), test::texturedImage({320, 240}, 53));
   PairsOptions o;
   o.dataDir = dir;
-  o.broadViews = false;
+  o.hardSets = true;
   o.onlySets = {"wall-sim", "tiles-sim"};
   o.wallSupersample = 2;
   const PairsResult r = runPairsExperiment(o);
