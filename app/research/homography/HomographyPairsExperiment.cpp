@@ -131,8 +131,7 @@ std::vector<HomographyPair> buildHomographyPairs(const std::filesystem::path& da
   std::uint64_t n = 0;
   for (const auto& dir : sequences) {
     const std::string name = dir.filename().string();
-    const std::string kind =
-        dir == dataDir ? name : std::filesystem::relative(dir.parent_path(), dataDir).string();
+    const std::string kind = dir.parent_path().filename().string();
     const cv::Mat reference = readGrey(findImage(dir, "img1"));
     for (int k = 2; k <= 9; ++k) {
       const auto img = findImage(dir, "img" + std::to_string(k));

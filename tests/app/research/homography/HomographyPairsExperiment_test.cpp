@@ -97,7 +97,7 @@ TEST(HomographyPairsExperiment, BuildsAndRegistersPairsOfASequenceFolder) {
   for (const PairsMethod& m : r.methods) ASSERT_EQ(m.outcomes.size(), pairs.size());
   for (const PairOutcome& o2 : r.methods[0].outcomes) {
     if (!o2.found) continue;
-    (o2.cornerErrorPx <= 3.0 ? registered : wrong) += 1;
+    (o2.overlapErrorPx <= 3.0 ? registered : wrong) += 1;  // over what the view sees
   }
   // The tracker never returns a wrong homography and registers nearly all of these views of
   // an evenly textured image (tilts to 60 degrees and 0.5-3.5x zooms included; 2 misses allowed).
@@ -109,7 +109,7 @@ TEST(HomographyPairsExperiment, BuildsAndRegistersPairsOfASequenceFolder) {
   EXPECT_EQ(runPairsExperiment(o).pairs.size(), 1u);
   o.onlySets = {"graf-sim"};
   EXPECT_THROW(runPairsExperiment(o), Error);
-  EXPECT_THROW(buildHomographyPairs(dir / "seq", 2.0, 1), Error);  // no sequence folder inside
+  EXPECT_EQ(buildHomographyPairs(dir / "seq", 2.0, 1).size(), 1u);  // a sequence folder itself
   EXPECT_THROW(buildHomographyPairs(dir / "missing", 2.0, 1), Error);
 }
 
@@ -118,6 +118,7 @@ TEST(HomographyPairsExperiment, BuildsAndRegistersPairsOfASequenceFolder) {
 // zoom and rotation), registered cold by the tracker and the OpenCV peers in one run. The
 // tracker reports no registration more than 3 px off on either set and registers more pairs
 // within 3 px than each peer; of the brick wall's 5 views at least 4 (the target is 2).
+// Errors: mean over the reference points the view sees (overlapErrorPx).
 // Measured (walls rendered with 2 x 2 rays per pixel to keep the test short): reftrack all 10
 // within 2.6 px; SIFT 5, AKAZE 5, ORB 3, with ORB 15.9 and 29.6 px off on two tiles views.
 TEST(HomographyPairsExperiment, RegistersTheRepeatedTextureSetsWithoutAWrongRegistration) {
@@ -136,22 +137,81 @@ TEST(HomographyPairsExperiment, RegistersTheRepeatedTextureSetsWithoutAWrongRegi
   std::vector<int> within(r.methods.size(), 0);
   for (size_t m = 0; m < r.methods.size(); ++m)
     for (const PairOutcome& o2 : r.methods[m].outcomes)
-      within[m] += o2.found && o2.cornerErrorPx <= 3.0 ? 1 : 0;
+      within[m] += o2.found && o2.overlapErrorPx <= 3.0 ? 1 : 0;
   for (size_t i = 0; i < r.pairs.size(); ++i) {
     const PairOutcome& own = r.methods[0].outcomes[i];
     std::printf("%s %s: reftrack %s %.2f px, %.1f ms", r.pairs[i].sequence.c_str(),
                 r.pairs[i].label.c_str(), own.found ? "found" : "lost",
-                own.found ? own.cornerErrorPx : -1.0, own.milliseconds);
+                own.found ? own.overlapErrorPx : -1.0, own.milliseconds);
     for (size_t m = 2; m < r.methods.size(); ++m)
       std::printf("; %s %.2f", r.methods[m].name.c_str(),
-                  r.methods[m].outcomes[i].found ? r.methods[m].outcomes[i].cornerErrorPx : -1.0);
+                  r.methods[m].outcomes[i].found ? r.methods[m].outcomes[i].overlapErrorPx : -1.0);
     std::printf("\n");
     if (!own.found) continue;
-    EXPECT_LE(own.cornerErrorPx, 3.0) << r.pairs[i].sequence << " " << r.pairs[i].label;
-    (r.pairs[i].sequence == "wall-sim" ? wall : tiles) += own.cornerErrorPx <= 3.0 ? 1 : 0;
+    EXPECT_LE(own.overlapErrorPx, 3.0) << r.pairs[i].sequence << " " << r.pairs[i].label;
+    (r.pairs[i].sequence == "wall-sim" ? wall : tiles) += own.overlapErrorPx <= 3.0 ? 1 : 0;
   }
   EXPECT_GE(wall, 4);
   EXPECT_GE(tiles, 4);
   for (size_t m = 2; m < r.methods.size(); ++m)
     EXPECT_GT(within[0], within[m]) << r.methods[m].name;
+}
+
+// The eight real Oxford sets (../shared/data: oxford-photometric and oxford-viewpoint, 40 pairs
+// img1 -> imgN), registered cold by reftrack alone and scored at img1's corners against the
+// given homographies. Measured (experiment-homography --experiment pairs --data ../shared/data):
+// 31 within 3 px; the nine others are 3.2-10.2 px from the given H, where the three OpenCV peers
+// are too (within 1.3 px of reftrack) and ECC moves the given H by as much (next test). The bound
+// on every returned H (12 px) leaves 1.8 px above the largest, boat 1->6 (10.2 px); the count
+// (31) is the one measured: any pair lost or moved off fails the test.
+TEST(HomographyPairsExperiment, RegistersTheRealOxfordPairsWhereTheirHomographiesHold) {
+  const auto data = test::sharedDataDir();
+  if (!data || !std::filesystem::exists(*data / "oxford-viewpoint" / "wall" / "img1.png"))
+    GTEST_SKIP() << "../shared/data with the Oxford sets not present";
+  PairsOptions o;
+  o.dataDir = *data;
+  o.onlySets = {"bikes", "leuven", "trees", "ubc", "bark", "boat", "graf", "wall"};
+  o.peers = false;
+  const PairsResult r = runPairsExperiment(o);
+  ASSERT_EQ(r.pairs.size(), 40u);
+  int within3 = 0;
+  for (size_t i = 0; i < r.pairs.size(); ++i) {
+    const PairOutcome& own = r.methods[0].outcomes[i];
+    ASSERT_TRUE(own.found) << r.pairs[i].sequence << " " << r.pairs[i].label << ": "
+                           << own.failure;
+    EXPECT_LT(own.cornerErrorPx, 12.0) << r.pairs[i].sequence << " " << r.pairs[i].label;
+    within3 += own.cornerErrorPx <= 3.0 ? 1 : 0;
+  }
+  EXPECT_GE(within3, 31);
+}
+
+// The check of the given homographies: OpenCV's ECC started from them leaves ubc 1->3's (JPEG
+// only, a flat print) where it is (measured 0.01 px at img1's corners) and moves boat 1->6's (a
+// harbour, not a plane, seen 2.8x zoomed) by 10.9 px — to within 1 px of where reftrack,
+// SIFT, AKAZE and ORB all register it (each 9.8-10.9 px from the given H).
+TEST(HomographyPairsExperiment, EccShowsWhereTheGivenHomographyIsOff) {
+  const auto data = test::sharedDataDir();
+  if (!data || !std::filesystem::exists(*data / "oxford-viewpoint" / "boat" / "img6.png"))
+    GTEST_SKIP() << "../shared/data with the Oxford sets not present";
+  PairsOptions o;
+  o.dataDir = *data;
+  o.onlySets = {"ubc", "boat"};
+  o.peers = false;
+  const PairsResult given = runPairsExperiment(o);
+  o.refineTruth = true;
+  const PairsResult refined = runPairsExperiment(o);
+  ASSERT_EQ(refined.pairs.size(), 10u);
+  for (size_t i = 0; i < refined.pairs.size(); ++i) {
+    const std::string name = refined.pairs[i].sequence + " " + refined.pairs[i].label;
+    const RefinedTruth& t = refined.truthChecks[i];
+    ASSERT_TRUE(t.converged) << name;
+    if (name == "ubc 1->3") {
+      EXPECT_LT(t.movedPx, 0.1);
+    }
+    if (name == "boat 1->6") {
+      EXPECT_GT(t.movedPx, 8.0);
+      EXPECT_GT(given.methods[0].outcomes[i].cornerErrorPx, 8.0);
+      EXPECT_LT(refined.methods[0].outcomes[i].cornerErrorPx, 1.5);
+    }
+  }
 }
