@@ -132,6 +132,7 @@ CommandRegistration registerTrackCommand(CLI::App& parent) {
             const HomographyTrackSummary s = runHomographyTrack(o);
             std::printf("homography: %d frames, %d tracked (%.1f%%), median %.2f ms per frame\n",
                         s.frames, s.tracked, 100.0 * s.tracked / s.frames, s.medianMs);
+            if (!s.advice.empty()) std::printf("note: %s\n", s.advice.c_str());
             if (!o.csv.empty()) std::printf("per-frame CSV: %s\n", o.csv.string().c_str());
             if (!o.record.empty()) std::printf("recording: %s\n", o.record.string().c_str());
           }};

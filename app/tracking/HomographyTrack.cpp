@@ -122,6 +122,7 @@ HomographyTrackSummary runHomographyTrack(const HomographyTrackOptions& o) {
   input.throwIfCutShort();
   std::nth_element(ms.begin(), ms.begin() + static_cast<long>(ms.size() / 2), ms.end());
   summary.medianMs = ms[ms.size() / 2];
+  if (tracker.advice().everShown()) summary.advice = NonPlanarAdvice::message();
   return summary;
 }
 

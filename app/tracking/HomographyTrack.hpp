@@ -24,6 +24,7 @@ struct HomographyTrackSummary {
   int frames = 0;
   int tracked = 0;
   double medianMs = 0.0;
+  std::string advice;  // NonPlanarAdvice's message when it was shown during the clip
 };
 
 // The reference and the frames may have different sizes (another camera). Throws

@@ -56,6 +56,9 @@ struct TrackingResult {
   // not drawn as if exact: OverlayCompositor).
   std::optional<double> predictedErrorPx;
   bool uncertain = false;
+  // Advice for the user while the recent frames show a known failure pattern (homography mode on
+  // a view that is not one plane: NonPlanarAdvice); empty else.
+  std::string advice;
 };
 
 class FrameTracker {

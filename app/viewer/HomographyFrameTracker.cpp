@@ -32,6 +32,8 @@ TrackingResult HomographyFrameTracker::process(const cv::Mat& frame, int, double
   TrackingResult r;
   r.status = last_.tracked ? "tracking" : "lost";
   if (!last_.tracked && !last_.failure.empty()) r.status += ": " + last_.failure;
+  advice_.add(last_);
+  r.advice = advice_.advice().value_or("");
   for (const auto& [stage, ms] : last_.stageMs) r.stages.push_back({stage, ms});
   r.matches = last_.matches;
   r.inliers = last_.inliers;

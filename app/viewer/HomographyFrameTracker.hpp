@@ -15,6 +15,7 @@
 #include <memory>
 #include <optional>
 
+#include "app/tracking/NonPlanarAdvice.hpp"
 #include "app/viewer/FrameTracker.hpp"
 #include "engine/geometry/FrameUndistorter.hpp"
 #include "engine/geometry/PinholeCamera.hpp"
@@ -40,6 +41,7 @@ class HomographyFrameTracker : public FrameTracker {
   // Label positions in the last processed frame (empty when it was not registered).
   const std::vector<cv::Point2d>& mappedLabels() const { return mappedLabels_; }
   const HomographyTracker& tracker() const { return *tracker_; }
+  const NonPlanarAdvice& advice() const { return advice_; }
   // The reference's size, and whether it comes from the frames' camera (it has its size).
   cv::Size referenceSize() const { return reference_.size(); }
   bool referenceSharesCamera() const { return sameCamera_; }
@@ -55,6 +57,7 @@ class HomographyFrameTracker : public FrameTracker {
   bool sameCamera_ = false;  // the reference comes from camera_ (has its size)
   AnnotationSet labels_;
   HomographyTrackResult last_;
+  NonPlanarAdvice advice_;
   std::vector<cv::Point2d> mappedLabels_;
 };
 

@@ -19,6 +19,7 @@ struct FrameStats {
   std::vector<StageTime> stages;
   int matches = 0, inliers = 0;
   std::string status;
+  std::string advice;  // TrackingResult::advice
   std::optional<Vector6d> pose;
   // Overlay error of the drawn object (pixels): predicted from the pose covariance (6-DOF), and
   // the true one (mean distance of the object's points, estimated vs true pose) with ground truth.

@@ -56,6 +56,11 @@ void drawStatsPanel(const StatsHistory& stats, const cv::Rect2f& placement) {
     const FrameStats& last = stats.frames().back();
     ImGui::Text("frame %d: %s, %d matches, %d inliers", last.index, last.status.c_str(),
                 last.matches, last.inliers);
+    if (!last.advice.empty()) {
+      ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.8f, 0.3f, 1.0f));
+      ImGui::TextWrapped("%s", last.advice.c_str());
+      ImGui::PopStyleColor();
+    }
     for (const StageTime& s : last.stages)
       ImGui::Text("  %-14s %7.2f ms", s.name.c_str(), s.milliseconds);
   }

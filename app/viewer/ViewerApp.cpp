@@ -283,6 +283,7 @@ struct FrameLoop {
     stats.matches = result.matches;
     stats.inliers = result.inliers;
     stats.status = result.status;
+    stats.advice = result.advice;
     if (result.references) state.references.addFrame(*result.references);
     if (result.worldToCamera) stats.pose = result.worldToCamera->toVector6();
     stats.predictedErrorPx = result.predictedErrorPx;
