@@ -29,6 +29,13 @@ def links(path):
         yield m.group(1), text.count("\n", 0, m.start()) + 1
 
 
+def anchors(path):
+    """The anchors GitHub gives a Markdown file's headings (lower case, punctuation dropped)."""
+    text = re.sub(r"```.*?```", "", path.read_text(), flags=re.S)
+    return {re.sub(r"[^\w\- ]", "", h.strip().lower()).replace(" ", "-")
+            for h in re.findall(r"^#+ (.*)$", text, flags=re.M)}
+
+
 def shown_commands(path):
     """Every `reftrack SUBCOMMAND ...` line of the file's shell blocks and inline code."""
     text = path.read_text()
@@ -60,10 +67,13 @@ class Docs(unittest.TestCase):
     def test_relative_links_resolve(self):
         for guide in GUIDES:
             for target, line in links(guide):
-                if re.match(r"[a-z]+:", target) or target.startswith("#"):
+                if re.match(r"[a-z]+:", target):
                     continue
-                path = (guide.parent / target.split("#")[0]).resolve()
+                file, _, anchor = target.partition("#")
+                path = (guide.parent / file).resolve() if file else guide
                 self.assertTrue(path.exists(), f"{guide.relative_to(ROOT)}:{line}: {target}")
+                if anchor:
+                    self.assertIn(anchor, anchors(path), f"{guide.relative_to(ROOT)}:{line}: {target}")
 
     def test_no_issue_numbers_in_user_docs(self):
         for guide in GUIDES:
