@@ -17,12 +17,6 @@ build="${REFTRACK_BUILD_DIR:-$root/build}"
 data="$root/../shared/data"
 out="$root/assets/readme"
 max_bytes=$((600 * 1024))
-bash "$root/scripts/build.sh" Release reftrack >/dev/null
-reftrack="$build/app/reftrack"
-mkdir -p "$out"
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
-
 wanted=("$@")
 [[ ${#wanted[@]} -eq 0 ]] && wanted=(viewer desk-overlay desk-cube-errors shelf-cube-errors)
 want() {
@@ -39,6 +33,11 @@ for w in "${wanted[@]}"; do
       ;;
   esac
 done
+bash "$root/scripts/build.sh" Release reftrack >/dev/null
+reftrack="$build/app/reftrack"
+mkdir -p "$out"
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
 
 # A screenshot (PNG) stored as $out/NAME.jpg, refused when larger than the README's limit.
 store_jpeg() {
