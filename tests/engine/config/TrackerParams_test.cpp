@@ -158,10 +158,12 @@ TEST(TrackerParams, ParsesYamlOrJsonText) {
             TrackerParams{}.ransac.maxIterations);
 }
 
-// README.md's example parameter file ("Tracking parameters"), read as written.
+// engine/README.md's example parameter file ("## Parameters"), read as written.
 TEST(TrackerParams, ReadsTheReadmesExample) {
-  const std::string readme = readTextFile(sourceDir() / "README.md");
-  const std::size_t start = readme.find("```yaml\n", readme.find("### Tracking parameters"));
+  const std::string readme = readTextFile(sourceDir() / "engine" / "README.md");
+  const std::size_t section = readme.find("\n## Parameters\n");
+  ASSERT_NE(section, std::string::npos);
+  const std::size_t start = readme.find("```yaml\n", section);
   ASSERT_NE(start, std::string::npos);
   const std::size_t end = readme.find("```", start + 8);
   const TrackerParams p =
