@@ -64,6 +64,23 @@ constexpr int kNearest = 4;
 constexpr float kDuplicateMinPx = 4.0f, kDuplicateSizeFraction = 0.25f;
 constexpr double kPi = 3.14159265358979323846;
 
+// Keypoints are detected on images brought to between kMinDetectPixels and kMaxDetectPixels
+// (same aspect): a small image (a 329x278 photo) is upsampled, so ORB's 31-pixel border and
+// patch leave it texture to describe and SIFT / ORB find the scales a larger view shows; a large
+// one (1712x1368) is reduced, so the same number of strongest keypoints covers it as densely as
+// a 1000x700 image and the two images of a pair keep detecting the same texture. Images of
+// 640x480 to 1024x768 pixels (all eight Oxford sets) are detected as they are.
+constexpr double kMinDetectPixels = 640.0 * 480.0;
+constexpr double kMaxDetectPixels = 1024.0 * 768.0;
+constexpr double kMaxUpsampling = 2.5;
+
+double workingScale(cv::Size size) {
+  const double area = static_cast<double>(size.area());
+  if (area < kMinDetectPixels) return std::min(kMaxUpsampling, std::sqrt(kMinDetectPixels / area));
+  if (area > kMaxDetectPixels) return std::sqrt(kMaxDetectPixels / area);
+  return 1.0;
+}
+
 // The affine map of the reference into a view tilted by tiltDeg across direction `angle`
 // (radians): rotate by -angle, compress x by cos(tilt), rotate back, then shift into a canvas
 // holding the whole image (its size in `canvas`).
@@ -148,8 +165,18 @@ KeypointHomographyRegistrar::KeypointHomographyRegistrar(const cv::Mat& referenc
     const int features =
         static_cast<int>(std::lround(params_.keypointFeatures * std::pow(1.44, kZoomFinerLevels)));
     View zoom;
+    // At the working scale, like every detection (a large reference reduced first).
+    const double s = std::min(1.0, workingScale(gray.size()));
+    cv::Mat image = gray;
+    if (s < 1.0) cv::resize(gray, image, cv::Size(), s, s, cv::INTER_AREA);
     cv::ORB::create(features, 1.2f, 8 + kZoomFinerLevels, 31, kZoomFinerLevels)
-        ->detectAndCompute(gray, cv::noArray(), zoom.keypoints, zoom.descriptors);
+        ->detectAndCompute(image, cv::noArray(), zoom.keypoints, zoom.descriptors);
+    if (s < 1.0)
+      for (cv::KeyPoint& k : zoom.keypoints) {
+        k.pt.x = static_cast<float>((k.pt.x + 0.5) / s - 0.5);
+        k.pt.y = static_cast<float>((k.pt.y + 0.5) / s - 0.5);
+        k.size = static_cast<float>(k.size / s);
+      }
     if (static_cast<int>(zoom.keypoints.size()) >= ransac_.minInliers)
       views_.push_back(std::move(zoom));
   }
@@ -158,12 +185,14 @@ KeypointHomographyRegistrar::KeypointHomographyRegistrar(const cv::Mat& referenc
 void KeypointHomographyRegistrar::detect(const cv::Mat& gray, double scale,
                                          std::vector<cv::KeyPoint>& keypoints,
                                          cv::Mat& descriptors) const {
+  scale *= workingScale(gray.size());
   cv::Mat image = gray;
   if (scale < 1.0) cv::resize(gray, image, cv::Size(), scale, scale, cv::INTER_AREA);
+  if (scale > 1.0) cv::resize(gray, image, cv::Size(), scale, scale, cv::INTER_LINEAR);
   detector_->detect(image, keypoints);
   cv::KeyPointsFilter::retainBest(keypoints, params_.keypointFeatures);
   detector_->compute(image, keypoints, descriptors);
-  if (scale < 1.0)
+  if (scale != 1.0)
     for (cv::KeyPoint& k : keypoints) {  // pixel centres: x_full = (x_small + 0.5) / s - 0.5
       k.pt.x = static_cast<float>((k.pt.x + 0.5) / scale - 0.5);
       k.pt.y = static_cast<float>((k.pt.y + 0.5) / scale - 0.5);
