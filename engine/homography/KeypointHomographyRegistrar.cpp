@@ -66,11 +66,14 @@ constexpr double kPi = 3.14159265358979323846;
 
 // Keypoints are detected on images brought to between kMinDetectPixels and kMaxDetectPixels
 // (same aspect): a small image (a 329x278 photo) is upsampled, so ORB's 31-pixel border and
-// patch leave it texture to describe and SIFT / ORB find the scales a larger view shows; a large
-// one (1712x1368) is reduced, so the same number of strongest keypoints covers it as densely as
-// a 1000x700 image and the two images of a pair keep detecting the same texture. Images of
-// 640x480 to 1024x768 pixels (all eight Oxford sets) are detected as they are.
-constexpr double kMinDetectPixels = 640.0 * 480.0;
+// patch leave it texture to describe; a large one (1712x1368) is reduced, so the same number of
+// strongest keypoints covers it as densely as a 1000x700 image and the two images of a pair keep
+// detecting the same texture. Images of 400x300 to 1024x768 pixels (all eight Oxford sets) are
+// detected as they are. Measured on the eight Oxford sets resampled to x0.35 (280-350 pixels
+// wide, `experiment-homography --experiment pairs --scales 0.35`): within 5 px over the overlap,
+// 36/40 detected as they are, 37/40 upsampled to 640x480, 38/40 to 400x300 (a stronger upsampling
+// made a 3.2x zoom of a 480x321 photo land 15 px off: KeypointHomographyRegistrar_test).
+constexpr double kMinDetectPixels = 400.0 * 300.0;
 constexpr double kMaxDetectPixels = 1024.0 * 768.0;
 constexpr double kMaxUpsampling = 2.5;
 
@@ -113,7 +116,10 @@ KeypointHomographyRegistrar::KeypointHomographyRegistrar(const cv::Mat& referenc
   norm_ = params_.keypoints == KeypointLayer::Sift ? cv::NORM_L2 : cv::NORM_HAMMING;
   const cv::Mat gray = toGray8(reference);
   views_.emplace_back();
-  detect(gray, 1.0, views_[0].keypoints, views_[0].descriptors);
+  // The reference and its synthetic views at the reference's working scale (a tilted view's
+  // smaller canvas is not upsampled: its compression is the point).
+  const double referenceScale = workingScale(gray.size());
+  detect(gray, referenceScale, views_[0].keypoints, views_[0].descriptors);
   if (static_cast<int>(views_[0].keypoints.size()) < ransac_.minInliers)
     throw Error("keypoint registrar: only " + std::to_string(views_[0].keypoints.size()) + " " +
                 keypointLayerName(params_.keypoints) +
@@ -135,7 +141,7 @@ KeypointHomographyRegistrar::KeypointHomographyRegistrar(const cv::Mat& referenc
     cv::warpAffine(blurred, tilted, A, canvas, cv::INTER_LINEAR, cv::BORDER_CONSTANT,
                    cv::Scalar(0));
     View view;
-    detect(tilted, 1.0, view.keypoints, view.descriptors);
+    detect(tilted, referenceScale, view.keypoints, view.descriptors);
     cv::Matx23d back;
     cv::invertAffineTransform(A, back);
     std::vector<cv::KeyPoint> kept;
@@ -166,12 +172,13 @@ KeypointHomographyRegistrar::KeypointHomographyRegistrar(const cv::Mat& referenc
         static_cast<int>(std::lround(params_.keypointFeatures * std::pow(1.44, kZoomFinerLevels)));
     View zoom;
     // At the working scale, like every detection (a large reference reduced first).
-    const double s = std::min(1.0, workingScale(gray.size()));
+    const double s = referenceScale;
     cv::Mat image = gray;
-    if (s < 1.0) cv::resize(gray, image, cv::Size(), s, s, cv::INTER_AREA);
+    if (s != 1.0)
+      cv::resize(gray, image, cv::Size(), s, s, s < 1.0 ? cv::INTER_AREA : cv::INTER_LINEAR);
     cv::ORB::create(features, 1.2f, 8 + kZoomFinerLevels, 31, kZoomFinerLevels)
         ->detectAndCompute(image, cv::noArray(), zoom.keypoints, zoom.descriptors);
-    if (s < 1.0)
+    if (s != 1.0)
       for (cv::KeyPoint& k : zoom.keypoints) {
         k.pt.x = static_cast<float>((k.pt.x + 0.5) / s - 0.5);
         k.pt.y = static_cast<float>((k.pt.y + 0.5) / s - 0.5);
@@ -185,7 +192,6 @@ KeypointHomographyRegistrar::KeypointHomographyRegistrar(const cv::Mat& referenc
 void KeypointHomographyRegistrar::detect(const cv::Mat& gray, double scale,
                                          std::vector<cv::KeyPoint>& keypoints,
                                          cv::Mat& descriptors) const {
-  scale *= workingScale(gray.size());
   cv::Mat image = gray;
   if (scale < 1.0) cv::resize(gray, image, cv::Size(), scale, scale, cv::INTER_AREA);
   if (scale > 1.0) cv::resize(gray, image, cv::Size(), scale, scale, cv::INTER_LINEAR);
@@ -205,7 +211,7 @@ KeypointRegistration KeypointHomographyRegistrar::registerFrame(const cv::Mat& f
   const cv::Mat gray = toGray8(frame);
   std::vector<cv::KeyPoint> keypoints;
   cv::Mat descriptors;
-  detect(gray, params_.keypointDetectScale, keypoints, descriptors);
+  detect(gray, params_.keypointDetectScale * workingScale(gray.size()), keypoints, descriptors);
   // The plain reference first; the tilted views only when it gives no confident homography,
   // then the found homography with the most inliers (or the plain view's failure). Each view's
   // distances are computed once and serve both passes.

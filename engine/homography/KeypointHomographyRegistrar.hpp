@@ -59,9 +59,9 @@ class KeypointHomographyRegistrar {
                                       const cv::Mat& descriptors, MatchPass pass,
                                       cv::Mat& distance) const;
 
-  // Keypoints and descriptors of `gray`, detected at `scale` of its size times its working scale
-  // (small images upsampled, large ones reduced; positions given in `gray`'s pixels), the
-  // `features` strongest.
+  // Keypoints and descriptors of `gray`, detected at `scale` of its size (callers pass the image's
+  // working scale: small images upsampled, large ones reduced; positions given in `gray`'s
+  // pixels), the `features` strongest.
   void detect(const cv::Mat& gray, double scale, std::vector<cv::KeyPoint>& keypoints,
               cv::Mat& descriptors) const;
 

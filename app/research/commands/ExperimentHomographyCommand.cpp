@@ -221,6 +221,27 @@ void runPairs(const ExperimentArgs& a, const TrackerParams& params) {
     if (g == "simulated hard sets") return isHard;
     return !p.real && !isHard;
   });
+  // Where reftrack's time goes: per stage, the median over the real pairs of each frame size.
+  std::printf("reftrack's stages, ms per cold registration (median over the pairs of a frame size, "
+              "wall clock)\n%-12s", "frame size");
+  const std::vector<std::pair<std::string, double>>& stagesOf0 = r.methods[0].outcomes[0].stageMs;
+  for (const auto& [name, ms] : stagesOf0) std::printf(" %-10s", name.c_str());
+  std::printf("\n");
+  for (const std::string& size : sizes) {
+    std::printf("%-12s", size.c_str());
+    for (size_t k = 0; k < stagesOf0.size(); ++k) {
+      std::vector<double> v;
+      for (size_t i = 0; i < r.pairs.size(); ++i) {
+        const PairOutcome& own = r.methods[0].outcomes[i];
+        if (r.pairs[i].real && sizeName(r.pairs[i].frame.size()) == size && k < own.stageMs.size())
+          v.push_back(own.stageMs[k].second);
+      }
+      std::sort(v.begin(), v.end());
+      std::printf(" %-10.1f", v.empty() ? NAN : v[v.size() / 2]);
+    }
+    std::printf("\n");
+  }
+  std::printf("\n");
   // The pairs the first method (reftrack) does not register within the bound, with every
   // method's error (- = no homography returned) and reftrack's reason.
   std::printf("pairs reftrack misses (%s error per method, - = none returned):\n", metric.c_str());

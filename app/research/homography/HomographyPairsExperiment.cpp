@@ -265,6 +265,7 @@ PairsResult runPairsExperiment(const PairsOptions& options) {
             const HomographyTrackResult r = t->track(p.frame);
             o.found = r.tracked;
             o.failure = r.failure;
+            o.stageMs = r.stageMs;
             H = r.H;
           } else {
             const FeatureBaselineResult r = b->registerFrame(p.frame);

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <opencv2/core.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "app/research/homography/HomographyPair.hpp"
@@ -40,6 +41,7 @@ struct PairOutcome {
   double milliseconds = 0.0;    // thread CPU time of the registration
   double wallMs = 0.0;          // wall-clock time of the registration
   std::string failure;          // reftrack: why it was not registered
+  std::vector<std::pair<std::string, double>> stageMs;  // reftrack: per stage (wall clock)
 };
 
 struct PairsMethod {
