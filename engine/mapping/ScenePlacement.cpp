@@ -9,6 +9,7 @@
 #include <string>
 
 #include "engine/core/Error.hpp"
+#include "engine/reference/MultiReferenceMap.hpp"
 
 namespace reftrack {
 
@@ -20,8 +21,6 @@ constexpr int kRansacIterations = 500;  // a plane of >= 25% inliers: 1 - (1 - 0
 // the desk clip's ~0.2 m spread; its triangulated points scatter ~1 mm off the desk).
 constexpr double kThresholdFraction = 0.02;
 constexpr double kMinInlierShare = 0.25;
-// The edge: this share of the inliers' median distance from the base on the plane, rounded.
-constexpr double kEdgeFraction = 0.5;
 
 double median(std::vector<double> v) {
   const auto mid = v.begin() + static_cast<long>(v.size() / 2);
@@ -169,7 +168,9 @@ ScenePlacement placeOnDominantPlane(const std::vector<Eigen::Vector3d>& points,
     onPlane.push_back((d - up * up.dot(d)).norm());
     squares += best.distance(p) * best.distance(p);
   }
-  placement.edge = roundToOneTwoFive(std::max(kEdgeFraction * median(onPlane), 1e-3));
+  // The edge: the inliers' median distance from the base on the plane, rounded (the desk clip,
+  // references 0 and 40: 0.1 m, two and a half squares of its chessboard).
+  placement.edge = roundToOneTwoFive(std::max(median(onPlane), 1e-3));
   placement.consideredPoints = static_cast<int>(near.size());
   placement.planePoints = static_cast<int>(inliers.size());
   placement.planeThresholdMetres = threshold;

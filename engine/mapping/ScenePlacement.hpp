@@ -2,14 +2,14 @@
 // ScenePlacement: where a virtual object stands by default in a map's scene — on the dominant
 // plane (RANSAC, then least squares) of the map points nearest their median, its base centre the
 // plane inliers' mean (on the least-squares plane), its up axis the plane normal on the side of
-// the reference cameras, its x axis the world x laid onto the plane, and its edge a rounded
-// (1, 2 or 5 x 10^k metres) fraction of the inliers' spread on the plane.
+// the reference cameras, its x axis the world x laid onto the plane, and its edge the inliers'
+// median distance from the base on the plane, rounded to 1, 2 or 5 x 10^k metres.
 #include <Eigen/Core>
 #include <vector>
 
-#include "engine/reference/MultiReferenceMap.hpp"
-
 namespace reftrack {
+
+class MultiReferenceMap;
 
 struct ScenePlacement {
   Eigen::Vector3d base = Eigen::Vector3d::Zero();          // on the plane (world, metres)

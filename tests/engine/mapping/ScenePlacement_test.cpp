@@ -10,6 +10,7 @@
 
 #include "ErrorMessage.hpp"
 #include "engine/core/Error.hpp"
+#include "engine/reference/MultiReferenceMap.hpp"
 #include "engine/tracking/PlaneWorld.hpp"
 
 namespace reftrack {
@@ -122,8 +123,9 @@ TEST(ScenePlacement, UpFollowsTheCamerasSide) {
   EXPECT_LT(below.rotation(2, 2), -0.999999);
   EXPECT_LT(above.base.norm(), 0.1);
   EXPECT_NEAR(above.base.z(), 0.0, 1e-12);
-  // The points span 0.4 m: median distance from the middle ~0.1 m, half of it rounded.
-  EXPECT_DOUBLE_EQ(above.edge, 0.05);
+  // The nearest half of a uniform 0.4 m square is about a disc of radius 0.16 m, whose median
+  // radius is 0.11 m: rounded, 0.1 m.
+  EXPECT_DOUBLE_EQ(above.edge, 0.1);
   EXPECT_TRUE(above.rotation.isIdentity(1e-9));
 }
 
