@@ -61,8 +61,10 @@ OverlaySettings placeCube(const MultiReferenceMap& map, const SixDofTrackOptions
     try {
       scene = placeOnDominantPlane(map);
     } catch (const Error& e) {
-      std::fprintf(stderr, "note: %s: the cube %s\n", e.what(),
-                   o.cubeAt ? "keeps its edge" : "stands at the world origin (see --cube-at)");
+      std::string fallback = o.cubeAt ? "" : "stands at the world origin (see --cube-at)";
+      if (!o.cubeEdge)
+        fallback += std::string(o.cubeAt ? "" : ", ") + "has a 0.1 m edge (see --cube-edge)";
+      std::fprintf(stderr, "note: %s: the cube %s\n", e.what(), fallback.c_str());
     }
   }
   overlay.applyScene(scene);
