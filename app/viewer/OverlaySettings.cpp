@@ -55,7 +55,8 @@ void OverlaySettings::fields(Self& p, const Field& field) {
   field("size_from_scene", p.sizeFromScene, WrittenAsNumber{})
       .help(
           "6-DOF with a map: scale the object to the scene (the plane's map points' median "
-          "distance from the base, rounded to 1, 2 or 5 cm, dm, ...; `size` is then ignored); 0: `size`");
+          "distance from the base, rounded to 1, 2 or 5 cm, dm, ...; `size` is then ignored); 0: "
+          "`size`");
   field("model", p.modelPath).help("OBJ model drawn instead of the wireframe cube; \"\": the cube");
   field("line_width_px", p.lineWidthPx, Range{0.1, 100.0}).help("Overlay line width (pixels)");
   field("vertex_dots", p.vertexDots, WrittenAsNumber{})

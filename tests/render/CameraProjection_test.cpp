@@ -122,7 +122,8 @@ double distanceToPolyline(const Eigen::Vector2d& p, const std::vector<Eigen::Vec
 // (along the top, down the left side, a diagonal through the centre) 0.35 m away. Their pieces'
 // polyline follows cv::projectPoints of 2001 points along each edge within 0.05 px (measured
 // 0.0014 px: a 4 px step's chord stays within 0.01 px of the curve), where the straight chord
-// between the ends misses it by tens of pixels (measured 31 px): the edges bend as the lens bends the video.
+// between the ends misses it by tens of pixels (measured 31 px): the edges bend as the lens bends
+// the video.
 TEST(CameraProjection, SegmentThroughLensFollowsTheDistortedEdge) {
   Eigen::Matrix3d K;
   K << 420.50671, 0, 355.20830, 0, 420.61094, 250.33679, 0, 0, 1;
