@@ -2,6 +2,7 @@
 // frame to one reference image (paper Sec. 7.3; per-frame CSV of status, inlier ratio, H and
 // milliseconds; labels drawn at their mapped positions in the recording) and `6dof` tracks the
 // full pose against a prepared reference map (runSixDofTrack).
+#include <cmath>
 #include <cstdio>
 #include <memory>
 
@@ -50,6 +51,9 @@ void checkModeOptions(const TrackArgs& a, TrackingMode mode) {
     forbid(a.cubeEdge > 0, "--cube-edge", "homography");
   } else {
     if (a.map.empty()) throw CLI::ValidationError("--map", "is required in 6dof mode");
+    for (double c : a.cubeAt)
+      if (!std::isfinite(c))
+        throw CLI::ValidationError("--cube-at", "must be three finite numbers");
     forbid(!a.reference.empty(), "--reference", "6dof");
     forbid(!a.labels.empty(), "--labels", "6dof");
     forbid(!a.camera.empty(), "--camera", "6dof (the map holds the camera)");

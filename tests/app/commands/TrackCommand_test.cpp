@@ -147,6 +147,8 @@ TEST(TrackCommand, UsageAndRuntimeErrors) {
                   .exitCode,
               2)
         << cube;
+  EXPECT_EQ(
+      runReftrack("track --map " + dir.string() + " --cube-at 0,nan,0 --input x", dir).exitCode, 2);
   EXPECT_EQ(runReftrack("track --map " + dir.string() + " --cube-at 0,0 --input x", dir).exitCode,
             2);
   // A camera file that is not one: a runtime failure naming it.
