@@ -2,6 +2,7 @@
 // frame to one reference image (paper Sec. 7.3; per-frame CSV of status, inlier ratio, H and
 // milliseconds; labels drawn at their mapped positions in the recording) and `6dof` tracks the
 // full pose against a prepared reference map (runSixDofTrack).
+#include <cmath>
 #include <cstdio>
 #include <memory>
 
@@ -20,8 +21,10 @@ struct TrackArgs {
   std::filesystem::path reference, map, labels, camera, csv, record, trajectory, params, motion;
   std::string input;
   int frames = -1;
-  double cube = 0.1;
+  std::vector<double> cubeAt;  // x,y,z or empty
+  double cubeEdge = 0.0;       // 0: from the scene
   bool coldStarts = false;
+  bool debugOverlay = false;
 };
 
 // --mode when given; else homography with --reference, 6dof with --map, else the params' mode.
@@ -44,8 +47,13 @@ void checkModeOptions(const TrackArgs& a, TrackingMode mode) {
     forbid(!a.map.empty(), "--map", "homography");
     forbid(!a.trajectory.empty(), "--trajectory", "homography");
     forbid(!a.motion.empty(), "--motion", "homography");
+    forbid(!a.cubeAt.empty(), "--cube-at", "homography");
+    forbid(a.cubeEdge > 0, "--cube-edge", "homography");
   } else {
     if (a.map.empty()) throw CLI::ValidationError("--map", "is required in 6dof mode");
+    for (double c : a.cubeAt)
+      if (!std::isfinite(c))
+        throw CLI::ValidationError("--cube-at", "must be three finite numbers");
     forbid(!a.reference.empty(), "--reference", "6dof");
     forbid(!a.labels.empty(), "--labels", "6dof");
     forbid(!a.camera.empty(), "--camera", "6dof (the map holds the camera)");
@@ -87,9 +95,16 @@ CommandRegistration registerTrackCommand(CLI::App& parent) {
                 "6dof: forget the past before every frame, so each frame is a cold start (the "
                 "start near a reference, then relocalisation): measures starts, never needed to "
                 "track");
-  sub->add_option("--cube", args->cube, "6dof: cube edge in the recording (metres)")
-      ->check(CLI::Range(1e-4, 100.0))
-      ->capture_default_str();
+  sub->add_option("--cube-at", args->cubeAt,
+                  "6dof: x,y,z of the recorded cube's base centre (world, metres; upright in the "
+                  "world frame; default: on the map's dominant plane near its middle)")
+      ->delimiter(',')
+      ->expected(3);
+  sub->add_option("--cube-edge,--cube", args->cubeEdge,
+                  "6dof: the recorded cube's edge (metres; default: scaled to the map's scene)")
+      ->check(CLI::Range(1e-4, 100.0));
+  sub->add_flag("--debug-overlay", args->debugOverlay,
+                "Draw the tracker's corners, matches and status label in the recording too");
   sub->footer(
       "Homography CSV columns: index,timestamp,status,inlier_ratio,h11..h33,ms — status\n"
       "tracked|lost, H\n"
@@ -115,7 +130,10 @@ CommandRegistration registerTrackCommand(CLI::App& parent) {
               o.csv = args->csv;
               o.record = args->record;
               o.maxFrames = args->frames;
-              o.cubeSize = args->cube;
+              if (!args->cubeAt.empty())
+                o.cubeAt = Eigen::Vector3d(args->cubeAt[0], args->cubeAt[1], args->cubeAt[2]);
+              if (args->cubeEdge > 0) o.cubeEdge = args->cubeEdge;
+              o.debugOverlay = args->debugOverlay;
               o.coldStarts = args->coldStarts;
               runSixDofTrack(o);
               return;
@@ -129,6 +147,7 @@ CommandRegistration registerTrackCommand(CLI::App& parent) {
             o.csv = args->csv;
             o.record = args->record;
             o.maxFrames = args->frames;
+            o.debugOverlay = args->debugOverlay;
             const HomographyTrackSummary s = runHomographyTrack(o);
             std::printf("homography: %d frames, %d tracked (%.1f%%), median %.2f ms per frame\n",
                         s.frames, s.tracked, 100.0 * s.tracked / s.frames, s.medianMs);

@@ -27,6 +27,7 @@ namespace {
 struct ViewArgs {
   ViewerOptions options;
   double cubeSize = 0.0;
+  std::vector<double> cubeAt;  // x,y,z or empty
   std::string simSize = "640x480";
   std::filesystem::path map, reference, labels;
 };
@@ -94,8 +95,19 @@ CommandRegistration registerViewCommand(CLI::App& parent) {
       ->check(CLI::ExistingFile);
   sub->add_option("--params", o.params, "Parameter YAML (TrackerParams + overlay section)")
       ->check(CLI::ExistingFile);
-  sub->add_option("--overlay-cube", args->cubeSize, "Cube edge length in metres")
+  sub->add_option("--cube-edge,--overlay-cube", args->cubeSize,
+                  "Cube edge in metres (default: scaled to the map's scene, else 0.1 or the "
+                  "--params overlay size)")
       ->check(CLI::PositiveNumber);
+  sub->add_option("--cube-at", args->cubeAt,
+                  "x,y,z of the cube's base centre (world, metres; upright in the world frame; "
+                  "default: on the map's dominant plane near its middle, else the --params "
+                  "overlay offset)")
+      ->delimiter(',')
+      ->expected(3);
+  sub->add_flag("--debug-overlay", o.debugOverlay,
+                "Draw the tracker's corners, matches and status label over the video (and in "
+                "recordings and screenshots) from the start");
   sub->add_option("--model", o.model, "OBJ model drawn instead of the cube")
       ->check(CLI::ExistingFile);
   sub->add_flag("--headless", o.headless, "No window: render off-screen (OSMesa/EGL)");
@@ -141,7 +153,9 @@ CommandRegistration registerViewCommand(CLI::App& parent) {
 
   return {sub, [args, sub] {
             ViewerOptions options = args->options;
-            if (sub->count("--overlay-cube") > 0) options.cubeSize = args->cubeSize;
+            if (sub->count("--cube-edge") > 0) options.cubeSize = args->cubeSize;
+            if (!args->cubeAt.empty())
+              options.cubeAt = Eigen::Vector3d(args->cubeAt[0], args->cubeAt[1], args->cubeAt[2]);
             options.source.simSize = *parseImageSize(args->simSize);
             if (args->map.empty() != args->reference.empty())
               options.mode = args->map.empty() ? TrackingMode::Homography : TrackingMode::SixDof;

@@ -1,8 +1,8 @@
 #pragma once
-// HomographyOverlay: one recorded frame of homography mode — the viewer's composite (video,
-// debug corners and matches, status label; OverlayCompositor) plus the reference frame's outline
-// mapped by H and every label drawn at its mapped position (render::Annotations2D, paper
-// Fig. 18). Needs a current GL 3.3 context.
+// HomographyOverlay: one recorded frame of homography mode — the viewer's composite (video; the
+// debug corners, matches and status label when the settings ask: OverlayCompositor) plus the
+// reference frame's outline mapped by H and every label drawn at its mapped position
+// (render::Annotations2D, paper Fig. 18). Needs a current GL 3.3 context.
 #include <memory>
 #include <opencv2/core.hpp>
 #include <string>

@@ -69,7 +69,8 @@ HomographyTrackSummary runHomographyTrack(const HomographyTrackOptions& o) {
   std::optional<PinholeCamera> camera = calibrated;  // the overlay's (set at the first frame)
   std::unique_ptr<HomographyOverlay> overlay;
   std::unique_ptr<VideoRecorder> recorder;
-  const OverlaySettings settings;
+  OverlaySettings settings;
+  settings.setDebugLayers(o.debugOverlay);
   if (!o.record.empty()) overlay = std::make_unique<HomographyOverlay>();
 
   std::vector<HomographyFrameRecord> records;

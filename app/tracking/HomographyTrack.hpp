@@ -18,6 +18,7 @@ struct HomographyTrackOptions {
   std::filesystem::path csv;        // per-frame CSV; empty = none
   std::filesystem::path record;     // MP4 of the registered overlay; empty = none
   int maxFrames = -1;               // -1 = all
+  bool debugOverlay = false;        // the recording also shows corners, matches, status label
 };
 
 struct HomographyTrackSummary {

@@ -14,6 +14,7 @@
 #include "engine/core/AtomicFile.hpp"
 #include "engine/core/Error.hpp"
 #include "engine/geometry/TumTrajectory.hpp"
+#include "engine/mapping/ScenePlacement.hpp"
 #include "engine/reference/MultiReferenceMap.hpp"
 #include "render/context/GlContext.hpp"
 
@@ -46,6 +47,41 @@ std::string csvHeader() {
   return h + ",predicted_error_px,message\n";
 }
 
+// The recorded cube: on the map's dominant plane and scaled to the scene unless --cube-at /
+// --cube-edge say otherwise (a map without a plane: the world origin, a 0.1 m edge); printed.
+OverlaySettings placeCube(const MultiReferenceMap& map, const SixDofTrackOptions& o) {
+  OverlaySettings overlay;
+  overlay.setDebugLayers(o.debugOverlay);
+  overlay.onScene = !o.cubeAt;
+  overlay.sizeFromScene = !o.cubeEdge;
+  if (o.cubeAt) overlay.offset = *o.cubeAt;
+  if (o.cubeEdge) overlay.size = *o.cubeEdge;
+  std::optional<ScenePlacement> scene;
+  if (overlay.onScene || overlay.sizeFromScene) {
+    try {
+      scene = placeOnDominantPlane(map);
+    } catch (const Error& e) {
+      std::string fallback = o.cubeAt ? "" : "stands at the world origin (see --cube-at)";
+      if (!o.cubeEdge)
+        fallback += std::string(o.cubeAt ? "" : ", ") + "has a 0.1 m edge (see --cube-edge)";
+      std::fprintf(stderr, "note: %s: the cube %s\n", e.what(), fallback.c_str());
+    }
+  }
+  overlay.applyScene(scene);
+  const Eigen::Vector3d up = overlay.orientation.col(2);
+  std::printf("cube: edge %.3f m%s, base centre (%.3f, %.3f, %.3f) m, up (%.2f, %.2f, %.2f)",
+              overlay.size, scene && overlay.sizeFromScene ? " (scaled to the scene)" : "",
+              overlay.offset.x(), overlay.offset.y(), overlay.offset.z(), up.x(), up.y(), up.z());
+  if (scene && overlay.onScene)
+    std::printf(
+        " on the scene's plane (%d of the %d map points near the middle within %.1f mm, "
+        "RMS %.1f mm)",
+        scene->planePoints, scene->consideredPoints, scene->planeThresholdMetres * 1e3,
+        scene->planeRmsMetres * 1e3);
+  std::printf("\n");
+  return overlay;
+}
+
 }  // namespace
 
 int runSixDofTrack(const SixDofTrackOptions& o) {
@@ -62,8 +98,7 @@ int runSixDofTrack(const SixDofTrackOptions& o) {
   PoseFrameTracker tracker(map, params);
   std::unique_ptr<OverlayCompositor> compositor;
   std::unique_ptr<VideoRecorder> recorder;
-  OverlaySettings overlay;
-  overlay.size = o.cubeSize;
+  const OverlaySettings overlay = placeCube(map, o);
   tracker.setOverlayPoints(overlay.cubeWorldVertices());  // the predicted error is the cube's
   if (!o.record.empty()) {
     compositor = std::make_unique<OverlayCompositor>();
@@ -170,7 +205,7 @@ int runSixDofTrack(const SixDofTrackOptions& o) {
     std::printf(
         "predicted overlay error (cube of %.3f m): median %.2f px, max %.2f px; %d frame(s) "
         "uncertain (above pose.max_predicted_error_px %g, 0: off)\n",
-        o.cubeSize, predicted[predicted.size() / 2], predicted.back(), uncertain,
+        overlay.size, predicted[predicted.size() / 2], predicted.back(), uncertain,
         params.pose.maxPredictedErrorPx);
   }
   std::printf("rolling-shutter readout: %.3f of the frame interval (%s)\n", readout,

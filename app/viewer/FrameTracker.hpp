@@ -11,6 +11,7 @@
 
 #include "engine/config/TrackerParams.hpp"
 #include "engine/geometry/RigidPose.hpp"
+#include "engine/mapping/ScenePlacement.hpp"
 
 namespace reftrack::app {
 
@@ -73,6 +74,9 @@ class FrameTracker {
   // The drawn object's points in the world frame, for the predicted overlay error (6-DOF); the
   // other trackers predict none and ignore them.
   virtual void setOverlayPoints(const std::vector<Eigen::Vector3d>& /*worldPoints*/) {}
+  // Where the overlay object stands by default in the tracked scene (6-DOF: on its map's
+  // dominant plane, OverlaySettings::applyScene); nullopt: no scene known.
+  virtual std::optional<ScenePlacement> scenePlacement() const { return std::nullopt; }
 };
 
 }  // namespace reftrack::app

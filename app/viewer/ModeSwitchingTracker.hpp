@@ -26,6 +26,10 @@ class ModeSwitchingTracker : public FrameTracker {
   void setOverlayPoints(const std::vector<Eigen::Vector3d>& worldPoints) override {
     if (sixDof_) sixDof_->setOverlayPoints(worldPoints);
   }
+  // The 6-DOF tracker's scene (whichever mode is active).
+  std::optional<ScenePlacement> scenePlacement() const override {
+    return sixDof_ ? sixDof_->scenePlacement() : std::nullopt;
+  }
 
  private:
   FrameTracker& active() const;

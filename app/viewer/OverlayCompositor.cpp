@@ -49,8 +49,11 @@ void OverlayCompositor::drawObject(const render::PinholeView& view, const Overla
   }
   render::ObjDrawOptions options;
   options.transform.scale = settings.size;
-  // OBJ models are y-up; the world's up is +z (out of the desk): rotate +90 deg about x.
-  options.transform.rotation << 1, 0, 0, 0, 0, -1, 0, 1, 0;
+  // OBJ models are y-up; the object's up is its +z (out of the desk): rotate +90 deg about x,
+  // then into the world by the object's orientation (the scene plane's, when placed on it).
+  Eigen::Matrix3d yUpToZUp;
+  yUpToZUp << 1, 0, 0, 0, 0, -1, 0, 1, 0;
+  options.transform.rotation = settings.orientation * yUpToZUp;
   options.transform.offset = settings.offset;
   glClear(GL_DEPTH_BUFFER_BIT);
   model_->draw(view, options);

@@ -2,12 +2,14 @@
 // OverlayCompositor: draws one composited frame — the video frame, then the virtual object (the
 // wireframe cube or an OBJ model) for camera K and the tracked world->camera pose, then the 2-D
 // debug layers (corners, matches, epipolar lines) and a status label — into the current render
-// target. Used by the viewer window, headless runs, `demo` and `track --record`. The overlay is
-// projected through the camera's lens distortion, so it lands on the distorted video where the
-// lens puts it (render::PinholeView::distortion). An uncertain pose (TrackingResult::uncertain:
-// its predicted overlay error exceeds pose.max_predicted_error_px) is not drawn as if exact: the
-// cube thin, grey and without its vertex dots, an OBJ model not at all, the label amber. Needs a
-// current GL 3.3 context.
+// target (the debug layers and the label only when the settings turn them on: by default the
+// picture is clean). Used by the viewer window, headless runs, `demo` and `track --record`. The
+// overlay is projected through the camera's lens distortion (the cube's edges cut into short
+// pieces), so it lands on the distorted video where the lens puts it
+// (render::PinholeView::distortion). An uncertain pose (TrackingResult::uncertain: its predicted
+// overlay error exceeds pose.max_predicted_error_px) is not drawn as if exact: the cube thin,
+// grey and without its vertex dots, an OBJ model not at all, the label amber. Needs a current GL
+// 3.3 context.
 #include <memory>
 #include <opencv2/core.hpp>
 #include <string>

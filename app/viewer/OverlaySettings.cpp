@@ -8,9 +8,22 @@ namespace reftrack::app {
 
 Eigen::Matrix4d OverlaySettings::cubeModelToWorld() const {
   Eigen::Matrix4d T = Eigen::Matrix4d::Identity();
-  T.block<3, 1>(0, 3) = offset + Eigen::Vector3d(0, 0, size / 2);
+  T.topLeftCorner<3, 3>() = orientation;
+  T.block<3, 1>(0, 3) = offset + orientation.col(2) * (size / 2);
   return T;
 }
+
+void OverlaySettings::applyScene(const std::optional<ScenePlacement>& scene) {
+  orientation = Eigen::Matrix3d::Identity();
+  if (!scene) return;
+  if (onScene) {
+    offset = scene->base;
+    orientation = scene->rotation;
+  }
+  if (sizeFromScene) size = scene->edge;
+}
+
+void OverlaySettings::setDebugLayers(bool on) { showCorners = showMatches = showLabels = on; }
 
 std::vector<Eigen::Vector3d> OverlaySettings::cubeWorldVertices() const {
   const Eigen::Matrix4d T = cubeModelToWorld();
@@ -34,6 +47,16 @@ void OverlaySettings::fields(Self& p, const Field& field) {
       .help("Overlay base centre in the world (marker) frame: y (metres)");
   field("offset_z", p.offset.z(), Range{-1e3, 1e3})
       .help("Overlay base centre in the world (marker) frame: z, out of the desk (metres)");
+  field("on_scene", p.onScene, WrittenAsNumber{})
+      .help(
+          "6-DOF with a map: stand the object on the dominant plane of the map points near "
+          "their middle, upright on it (offset_x/y/z are then ignored); 0: at offset_x/y/z, "
+          "upright in the world frame");
+  field("size_from_scene", p.sizeFromScene, WrittenAsNumber{})
+      .help(
+          "6-DOF with a map: scale the object to the scene (the plane's map points' median "
+          "distance from the base, rounded to 1, 2 or 5 cm, dm, ...; `size` is then ignored); 0: "
+          "`size`");
   field("model", p.modelPath).help("OBJ model drawn instead of the wireframe cube; \"\": the cube");
   field("line_width_px", p.lineWidthPx, Range{0.1, 100.0}).help("Overlay line width (pixels)");
   field("vertex_dots", p.vertexDots, WrittenAsNumber{})

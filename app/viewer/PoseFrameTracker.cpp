@@ -1,14 +1,27 @@
 #include "app/viewer/PoseFrameTracker.hpp"
 
+#include "engine/core/Error.hpp"
 #include "engine/geometry/FundamentalMatrix.hpp"
 
 namespace reftrack::app {
 
+namespace {
+
+std::optional<ScenePlacement> findScene(const MultiReferenceMap& map) {
+  try {
+    return placeOnDominantPlane(map);
+  } catch (const Error&) {
+    return std::nullopt;  // too few points or no plane: the object stays where the settings say
+  }
+}
+
+}  // namespace
+
 PoseFrameTracker::PoseFrameTracker(MultiReferenceMap map, const TrackerParams& params)
-    : tracker_(std::move(map), params) {}
+    : tracker_(std::move(map), params), scene_(findScene(tracker_.map())) {}
 
 PoseFrameTracker::PoseFrameTracker(const ReferenceMap& map, const TrackerParams& params)
-    : tracker_(MultiReferenceMap::fromPair(map), params) {}
+    : tracker_(MultiReferenceMap::fromPair(map), params), scene_(findScene(tracker_.map())) {}
 
 TrackingResult PoseFrameTracker::process(const cv::Mat& frame, int, double) {
   last_ = tracker_.process(frame);

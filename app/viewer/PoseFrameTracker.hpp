@@ -21,6 +21,8 @@ class PoseFrameTracker : public FrameTracker {
   std::string name() const override { return "6-DOF"; }
   std::vector<ReferenceImage> referenceImages() const override;
   void setOverlayPoints(const std::vector<Eigen::Vector3d>& worldPoints) override;
+  // The map's dominant plane (placeOnDominantPlane; nullopt when it has none), found once.
+  std::optional<ScenePlacement> scenePlacement() const override { return scene_; }
   const MultiReferenceTracker& tracker() const { return tracker_; }
   MultiReferenceTracker& tracker() { return tracker_; }
   const MultiReferenceResult& last() const { return last_; }
@@ -28,6 +30,7 @@ class PoseFrameTracker : public FrameTracker {
  private:
   MultiReferenceTracker tracker_;
   MultiReferenceResult last_;
+  std::optional<ScenePlacement> scene_;
 };
 
 }  // namespace reftrack::app

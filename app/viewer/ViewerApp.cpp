@@ -52,7 +52,8 @@ void ViewerOptions::check() const {
   if (input.empty()) throw Error("--input is required");
   if (maxFrames == 0 || maxFrames < -1) throw Error("--frames must be positive");
   if (cubeSize && !(std::isfinite(*cubeSize) && *cubeSize > 0))
-    throw Error("--overlay-cube must be a positive size in metres");
+    throw Error("--cube-edge must be a positive size in metres");
+  if (cubeAt && !cubeAt->allFinite()) throw Error("--cube-at must be three finite numbers");
   if (!model.empty() && !fs::is_regular_file(model))
     throw Error("model file '" + model.string() + "' does not exist");
   if (!camera.empty() && !fs::is_regular_file(camera))
@@ -131,7 +132,15 @@ Session openSession(const ViewerOptions& options, ViewerState& state) {
   Session s;
   state.settings = options.params.empty() ? ViewerSettings{} : ViewerSettings::load(options.params);
   if (options.mode) state.settings.tracker.mode = *options.mode;
-  if (options.cubeSize) state.settings.overlay.size = *options.cubeSize;
+  if (options.cubeSize) {
+    state.settings.overlay.size = *options.cubeSize;
+    state.settings.overlay.sizeFromScene = false;
+  }
+  if (options.cubeAt) {
+    state.settings.overlay.offset = *options.cubeAt;
+    state.settings.overlay.onScene = false;
+  }
+  if (options.debugOverlay) state.settings.overlay.setDebugLayers(true);
   if (!options.model.empty()) state.settings.overlay.modelPath = options.model.string();
   state.settings.check();
   if (!options.params.empty()) state.paramsPath = options.params.string();
@@ -265,6 +274,10 @@ struct FrameLoop {
                   " but the camera is calibrated for " +
                   std::to_string(session.camera.imageSize().width) + "x" +
                   std::to_string(session.camera.imageSize().height));
+    // The object stands on the tracked scene unless placed by hand (OverlaySettings::onScene).
+    state.overlayEdit.scene =
+        session.tracker ? session.tracker->scenePlacement() : std::optional<ScenePlacement>{};
+    state.settings.overlay.applyScene(state.overlayEdit.scene);
     if (session.tracker) {
       session.tracker->setOverlayPoints(state.settings.overlay.cubeWorldVertices());
       result = session.tracker->process(current.image, current.index, current.timestamp);

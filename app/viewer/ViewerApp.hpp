@@ -19,12 +19,15 @@
 namespace reftrack::app {
 
 struct ViewerOptions {
-  std::string input;                 // see openFrameSource
-  std::filesystem::path camera;      // camera.yml; optional for sim: inputs
-  std::filesystem::path poses;       // TUM trajectory replayed as the poses (optional)
-  std::filesystem::path params;      // ViewerSettings / TrackerParams YAML (optional)
-  std::filesystem::path model;       // OBJ drawn instead of the cube (optional)
-  std::optional<double> cubeSize;    // overrides the parameter file's overlay size
+  std::string input;               // see openFrameSource
+  std::filesystem::path camera;    // camera.yml; optional for sim: inputs
+  std::filesystem::path poses;     // TUM trajectory replayed as the poses (optional)
+  std::filesystem::path params;    // ViewerSettings / TrackerParams YAML (optional)
+  std::filesystem::path model;     // OBJ drawn instead of the cube (optional)
+  std::optional<double> cubeSize;  // overrides the overlay's size (and its size from the scene)
+  // Overrides the overlay's base centre (world, metres; and its placement on the scene).
+  std::optional<Eigen::Vector3d> cubeAt;
+  bool debugOverlay = false;         // turns on the corners, matches and labels (OverlaySettings)
   std::filesystem::path record;      // MP4 to record from the first frame (optional)
   std::filesystem::path screenshot;  // PNG of the last drawn canvas (optional)
   bool headless = false;

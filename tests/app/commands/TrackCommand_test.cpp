@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -137,6 +139,18 @@ TEST(TrackCommand, UsageAndRuntimeErrors) {
                 .exitCode,
             2);
   EXPECT_EQ(runReftrack("track --reference missing.png --input x", dir).exitCode, 2);
+  // The cube options are 6-DOF's; --cube-at takes three numbers.
+  for (const char* cube : {"--cube-at 0,0,0", "--cube-edge 0.1", "--cube 0.1"})
+    EXPECT_EQ(runReftrack("track --reference " + (dir / "ref.png").string() + " " + cube +
+                              " --input " + (dir / "ref.png").string(),
+                          dir)
+                  .exitCode,
+              2)
+        << cube;
+  EXPECT_EQ(
+      runReftrack("track --map " + dir.string() + " --cube-at 0,nan,0 --input x", dir).exitCode, 2);
+  EXPECT_EQ(runReftrack("track --map " + dir.string() + " --cube-at 0,0 --input x", dir).exitCode,
+            2);
   // A camera file that is not one: a runtime failure naming it.
   const auto badCamera =
       runReftrack("track --reference " + (dir / "ref.png").string() + " --camera " +
@@ -290,4 +304,58 @@ TEST(TrackCommand, EurocInputBringsItsCameraAndGroundTruth) {
   const std::size_t associated = eval.out.find("\"associated_frames\": ");
   ASSERT_NE(associated, std::string::npos) << eval.out;
   EXPECT_GE(std::stoi(eval.out.substr(associated + 21)), 8) << eval.out;
+}
+
+// The desk clip (../shared/data/desk-chessboard; skipped without it), map of frames 0 and 40 as
+// its README prepares it: by default the recorded cube stands on the board (its plane z = 0,
+// inner corners x 0..0.32 m, y -0.20..0 m) with a 10 cm edge; --cube-at and --cube-edge (alias
+// --cube) place it by hand.
+TEST(TrackCommand, DeskCubeStandsOnTheBoardUnlessPlacedByHand) {
+  const std::optional<std::filesystem::path> data = sharedDataDir();
+  if (!data || !std::filesystem::exists(*data / "desk-chessboard/groundtruth.txt"))
+    GTEST_SKIP() << "../shared/data/desk-chessboard not found (the shared real recordings)";
+  const auto dir = freshTempDir("TrackCommand_desk_cube");
+  const std::filesystem::path clip = *data / "desk-chessboard";
+  const auto prepare =
+      runReftrack("prepare --input " + (clip / "frames").string() + " --camera " +
+                      (clip / "camera.yml").string() + " --ref-frames 0,40 --poses " +
+                      (clip / "groundtruth.txt").string() + " --out " + (dir / "map").string(),
+                  dir);
+  ASSERT_EQ(prepare.exitCode, 0) << prepare.err;
+  const std::string track = "track --map " + (dir / "map").string() + " --input " +
+                            (clip / "frames").string() + " --frames 2 --record " +
+                            (dir / "out.mp4").string();
+  const auto cubeLine = [](const std::string& out) {
+    const std::size_t at = out.find("cube: ");
+    return at == std::string::npos ? std::string() : out.substr(at, out.find('\n', at) - at);
+  };
+  const auto byDefault = runReftrack(track, dir);
+  ASSERT_EQ(byDefault.exitCode, 0) << byDefault.err;
+  const std::string line = cubeLine(byDefault.out);
+  double x = NAN, y = NAN, z = NAN;
+  ASSERT_EQ(std::sscanf(line.c_str(),
+                        "cube: edge 0.100 m (scaled to the scene), base centre "
+                        "(%lf, %lf, %lf) m",
+                        &x, &y, &z),
+            3)
+      << line;
+  EXPECT_NE(line.find("on the scene's plane"), std::string::npos) << line;
+  // On the board (the plane fit's base is within 2 mm of z = 0: OverlayCompositor_test).
+  EXPECT_GT(x, 0.0);
+  EXPECT_LT(x, 0.32);
+  EXPECT_GT(y, -0.20);
+  EXPECT_LT(y, 0.0);
+  EXPECT_LT(std::abs(z), 0.002);
+  const auto byHand = runReftrack(track + " --cube-at 0.16,-0.10,0 --cube 0.05", dir);
+  ASSERT_EQ(byHand.exitCode, 0) << byHand.err;
+  EXPECT_EQ(cubeLine(byHand.out),
+            "cube: edge 0.050 m, base centre (0.160, -0.100, 0.000) m, up (0.00, 0.00, 1.00)");
+  const auto edgeOnly = runReftrack(track + " --cube-edge 0.2", dir);
+  ASSERT_EQ(edgeOnly.exitCode, 0) << edgeOnly.err;
+  const auto baseOf = [](const std::string& l) {
+    const std::size_t at = l.find("base centre");
+    return at == std::string::npos ? std::string() : l.substr(at, l.find(" m, up") - at);
+  };
+  EXPECT_EQ(cubeLine(edgeOnly.out).substr(0, 19), "cube: edge 0.200 m,") << edgeOnly.out;
+  EXPECT_EQ(baseOf(cubeLine(edgeOnly.out)), baseOf(line));  // still on the scene
 }

@@ -1,5 +1,9 @@
 // `reftrack view` end to end through the binary: recorded MP4 frame count (ffprobe), the UI
-// screenshot against a stored golden image, the GLFW window under Xvfb, and bad input.
+// screenshot against a stored golden image (tests/app/golden/ui_panels.png), the cube and debug
+// overlay options, the GLFW window under Xvfb, and bad input. After an intended change of the
+// panels or the overlay, regenerate the golden with
+//   REFTRACK_UPDATE_GOLDEN=1 ctest --test-dir build -R ViewCommand.UiScreenshotMatchesGolden
+// (the test then writes it and skips), look at it, and commit it.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -63,7 +67,7 @@ TEST(ViewCommand, UiScreenshotMatchesGolden) {
   const fs::path golden = test::sourceDir() / "tests/app/golden/ui_panels.png";
   const char* update = std::getenv("REFTRACK_UPDATE_GOLDEN");
   if (update && std::string(update) == "1") {
-    fs::copy_file(shot, golden, fs::copy_options::overwrite_existing);
+    cv::imwrite(golden.string(), cv::imread(shot.string()), {cv::IMWRITE_PNG_COMPRESSION, 9});
     GTEST_SKIP() << "golden image regenerated: " << golden;
   }
   const cv::Mat expected = cv::imread(golden.string()), actual = cv::imread(shot.string());
@@ -85,6 +89,36 @@ TEST(ViewCommand, UiScreenshotMatchesGolden) {
   std::cout << "golden UI: " << differing << " pixels differ (" << 100 * fraction << "%)\n";
   EXPECT_LT(fraction, 0.01) << differing << " pixels differ; see " << shot;
   EXPECT_LT(cv::mean(channelMax)[0], 2.0);
+}
+
+// Headless screenshots of one sim:static frame (no map: the cube stands at the world origin).
+// --debug-overlay adds the status label top-left; --cube-at moves the cube, --cube-edge resizes
+// it, and --overlay-cube is the same option as --cube-edge.
+TEST(ViewCommand, CubeOptionsAndDebugOverlayChangeTheScreenshot) {
+  const fs::path dir = test::freshTempDir("ViewCommand_CubeOptions");
+  const auto shot = [&](const std::string& name, const std::string& options) {
+    const fs::path file = dir / (name + ".png");
+    const auto run = test::runReftrack(
+        "view --headless --input sim:static --sim-size 320x240 "
+        "--frames 1 --screenshot " +
+            file.string() + " " + options,
+        dir);
+    EXPECT_EQ(run.exitCode, 0) << run.err;
+    return cv::imread(file.string());
+  };
+  const cv::Mat plain = shot("plain", ""), debug = shot("debug", "--debug-overlay");
+  const cv::Mat moved = shot("moved", "--cube-at 0.05,0.02,0");
+  const cv::Mat edge = shot("edge", "--cube-edge 0.05"),
+                alias = shot("alias", "--overlay-cube 0.05");
+  ASSERT_FALSE(plain.empty());
+  const cv::Rect label(0, 0, 120, 20), rest(0, 30, plain.cols, plain.rows - 30);
+  EXPECT_GT(cv::norm(debug(label), plain(label), cv::NORM_INF), 0.0);
+  EXPECT_EQ(cv::norm(debug(rest), plain(rest), cv::NORM_INF), 0.0);  // no corners: replayed poses
+  EXPECT_GT(cv::norm(moved, plain, cv::NORM_INF), 0.0);
+  EXPECT_GT(cv::norm(edge, plain, cv::NORM_INF), 0.0);
+  EXPECT_EQ(cv::norm(edge, alias, cv::NORM_INF), 0.0);
+  const auto bad = test::runReftrack("view --headless --input sim:static --cube-at 1,2", dir);
+  EXPECT_EQ(bad.exitCode, 2) << bad.err;
 }
 
 TEST(ViewCommand, WindowUnderXvfbIsNotBlank) {

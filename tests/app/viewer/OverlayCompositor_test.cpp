@@ -1,12 +1,24 @@
 // OverlayCompositor over a simulator frame with its true pose: the cube's vertex dots (distinct
 // colours) are centred within 0.5 px of K[R|t]X; debug layers and labels change the image only
-// where asked; a frame of the wrong size is refused.
+// where asked (none by default); a frame of the wrong size is refused. On a real frame of the
+// desk clip (../shared/data/desk-chessboard; skipped without it) the default cube, placed on the
+// scene of the map of frames 0 and 40, is compared with a golden image:
+// tests/app/golden/desk_overlay.png. After an intended change of the drawing, regenerate it with
+//   REFTRACK_UPDATE_GOLDEN=1 ctest --test-dir build -R OverlayCompositorTest.DeskFrame
+// (the test then writes the golden and skips), look at it, and commit it.
 #include "app/viewer/OverlayCompositor.hpp"
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+#include <opencv2/imgcodecs.hpp>
+
+#include "TestPaths.hpp"
 #include "app/simulator/SceneSimulator.hpp"
 #include "engine/core/Error.hpp"
+#include "engine/geometry/TumTrajectory.hpp"
+#include "engine/mapping/ScenePlacement.hpp"
+#include "engine/reference/MultiReferencePreparer.hpp"
 #include "render/context/GlContext.hpp"
 
 using namespace reftrack;
@@ -130,6 +142,7 @@ TEST_F(OverlayCompositorTest, LostFramesShowTheVideoOnly) {
       frame, sim_->camera(), lost,
       [] {
         OverlaySettings s;
+        s.showLabels = true;
         return s;
       }(),
       "frame 0 lost");
@@ -183,17 +196,19 @@ TEST_F(OverlayCompositorTest, DebugLayersFollowTheirSwitches) {
   result.debug.corners = {{100, 100}};
   result.debug.matches = {{{200, 200}, {260, 220}}};
   result.debug.epipolarLines = {cv::Vec3d(0, 1, -400)};  // the row y = 400
-  OverlaySettings off;
-  off.showCorners = off.showMatches = off.showEpipolarLines = off.showLabels = false;
-  EXPECT_EQ(cv::norm(compositor.composite(frame, sim_->camera(), result, off), frame, cv::NORM_INF),
+  const OverlaySettings off;  // the defaults: a clean picture, no debug layer, no label
+  EXPECT_EQ(cv::norm(compositor.composite(frame, sim_->camera(), result, off, "frame 0 tracking"),
+                     frame, cv::NORM_INF),
             0.0);
   OverlaySettings on = off;
-  on.showCorners = on.showMatches = on.showEpipolarLines = true;
-  const cv::Mat out = compositor.composite(frame, sim_->camera(), result, on);
+  on.setDebugLayers(true);  // --debug-overlay
+  on.showEpipolarLines = true;
+  const cv::Mat out = compositor.composite(frame, sim_->camera(), result, on, "frame 0 tracking");
   auto changed = [&](int x, int y) { return out.at<cv::Vec3b>(y, x) != frame.at<cv::Vec3b>(y, x); };
   EXPECT_TRUE(changed(100, 100));  // corner dot
   EXPECT_TRUE(changed(230, 210));  // middle of the match segment
   EXPECT_TRUE(changed(10, 400));   // epipolar line across the image
+  EXPECT_TRUE(changed(20, 15));    // the label, top-left
   EXPECT_FALSE(changed(500, 50));  // elsewhere untouched
 }
 
@@ -203,4 +218,110 @@ TEST_F(OverlayCompositorTest, FrameOfTheWrongSizeIsRefused) {
   EXPECT_THROW(compositor.composite(cv::Mat(100, 100, CV_8UC3, cv::Scalar::all(0)), sim_->camera(),
                                     result, OverlaySettings{}),
                Error);
+}
+
+namespace {
+
+// Pixels of `a` and `b` (same size, BGR) whose largest channel difference exceeds `levels`.
+int differingPixels(const cv::Mat& a, const cv::Mat& b, int levels) {
+  cv::Mat diff, channels[3];
+  cv::absdiff(a, b, diff);
+  cv::split(diff, channels);
+  return cv::countNonZero(cv::max(channels[0], cv::max(channels[1], channels[2])) > levels);
+}
+
+}  // namespace
+
+// The desk clip's frame 45 at its true pose, the default overlay: the cube on the scene of the
+// map of frames 0 and 40 (as `track --map` draws it), through the clip's strong lens. The scene
+// placement must put it on the board; the picture must match the golden image inside the cube's
+// box and be the untouched frame outside it (a clean recording: no corners, matches or label).
+TEST_F(OverlayCompositorTest, DeskFrameOverlayMatchesGolden) {
+  const std::optional<std::filesystem::path> data = test::sharedDataDir();
+  if (!data || !std::filesystem::exists(*data / "desk-chessboard/groundtruth.txt"))
+    GTEST_SKIP() << "../shared/data/desk-chessboard not found (the shared real recordings)";
+  const std::filesystem::path clip = *data / "desk-chessboard";
+  const PinholeCamera camera = PinholeCamera::load(clip / "camera.yml");
+  const TumTrajectory truth = TumTrajectory::load(clip / "groundtruth.txt");
+  auto frameAt = [&](int i) {
+    char name[32];
+    std::snprintf(name, sizeof name, "frames/%06d.jpg", i);
+    return cv::imread((clip / name).string(), cv::IMREAD_COLOR);
+  };
+  auto poseAt = [&](int i) { return *truth.poseAt(i / 30.0, 1e-3); };
+  // `reftrack prepare --input frames --ref-frames 0,40 --poses groundtruth.txt`.
+  const MultiReferenceMap map = MultiReferencePreparer(camera)
+                                    .prepare({{frameAt(0), "frame 0"}, {frameAt(40), "frame 40"}},
+                                             {poseAt(0), poseAt(40)}, "groundtruth.txt")
+                                    .map;
+  const ScenePlacement scene = placeOnDominantPlane(map);
+  const Eigen::Vector3d up = scene.rotation.col(2);
+  const double tiltDeg = std::acos(up.z()) * 180.0 / M_PI;
+  std::cout << "desk scene: base (" << scene.base.transpose() << ") m, tilt " << tiltDeg
+            << " deg, edge " << scene.edge << " m, " << scene.planePoints << " of "
+            << scene.consideredPoints << " points on the plane, RMS " << scene.planeRmsMetres * 1e3
+            << " mm\n";
+  // The board is the world plane z = 0, its inner corners span x 0..0.32 m, y -0.20..0 m. The
+  // map's points scatter ~1 mm off it (RMS, measured 1.0 mm): the base within 2 mm of the plane,
+  // the normal within 2 degrees of +z (measured 1.2), the base on the board, a board-sized cube.
+  EXPECT_LT(std::abs(scene.base.z()), 0.002);
+  EXPECT_LT(tiltDeg, 2.0);
+  EXPECT_GT(scene.base.x(), 0.0);
+  EXPECT_LT(scene.base.x(), 0.32);
+  EXPECT_GT(scene.base.y(), -0.20);
+  EXPECT_LT(scene.base.y(), 0.0);
+  EXPECT_DOUBLE_EQ(scene.edge, 0.1);
+
+  OverlaySettings settings;
+  settings.applyScene(scene);
+  TrackingResult result;
+  result.status = "tracking";
+  result.worldToCamera = poseAt(45);
+  const cv::Mat frame = frameAt(45);
+  OverlayCompositor compositor;
+  const cv::Mat out = compositor.composite(frame, camera, result, settings, "frame 45 tracking");
+  // The box: the vertices through the lens, plus the dots' radius and a margin.
+  cv::Rect box;
+  for (const Eigen::Vector3d& X : settings.cubeWorldVertices()) {
+    const Eigen::Vector2d p = camera.projectDistorted(*result.worldToCamera * X);
+    const cv::Rect dot(cvFloor(p.x()) - 12, cvFloor(p.y()) - 12, 25, 25);
+    box = box.area() == 0 ? dot : box | dot;
+  }
+  // The lens bends the edges outwards of the chords by up to a few pixels: 8 px more.
+  box = cv::Rect(box.x - 8, box.y - 8, box.width + 16, box.height + 16) &
+        cv::Rect(0, 0, frame.cols, frame.rows);
+  cv::Mat outside = out.clone(), frameOutside = frame.clone();
+  outside(box).setTo(cv::Scalar::all(0));
+  frameOutside(box).setTo(cv::Scalar::all(0));
+  EXPECT_EQ(cv::norm(outside, frameOutside, cv::NORM_INF), 0.0) << "drawn outside the cube's box";
+
+  const cv::Mat crop = out(box).clone();
+  const std::filesystem::path golden = test::sourceDir() / "tests/app/golden/desk_overlay.png";
+  const char* update = std::getenv("REFTRACK_UPDATE_GOLDEN");
+  if (update && std::string(update) == "1") {
+    cv::imwrite(golden.string(), crop, {cv::IMWRITE_PNG_COMPRESSION, 9});
+    GTEST_SKIP() << "golden image regenerated: " << golden;
+  }
+  const cv::Mat expected = cv::imread(golden.string(), cv::IMREAD_COLOR);
+  ASSERT_FALSE(expected.empty()) << "missing " << golden << " (REFTRACK_UPDATE_GOLDEN=1 makes it)";
+  ASSERT_EQ(crop.size(), expected.size()) << "the cube's box moved";
+  // A pixel differs when a channel is off by more than 40 levels. The edges and dots are
+  // triangles with hard borders, whose border pixels are ~5% of the box: a rasteriser of another
+  // Mesa version (llvmpipe's or softpipe's sub-pixel precision, 1/16 to 1/256 px) moves the
+  // borders by at most 1/16 px and flips at most ~1/16 of them, 0.3%; 1% is the bound (same
+  // machine: 0 pixels). A cube 0.5 mm off (0.7 px here) flips 3%: checked below.
+  const int differing = differingPixels(crop, expected, 40);
+  const double share = differing / static_cast<double>(crop.total());
+  std::cout << "desk overlay vs golden: " << differing << " of " << crop.total()
+            << " pixels differ (" << 100 * share << "%)\n";
+  EXPECT_LT(share, 0.01) << "see the box " << box << " of the composite";
+  // The tolerance can fail: the same cube moved 0.5 mm along x and y is caught.
+  OverlaySettings moved = settings;
+  moved.offset += Eigen::Vector3d(0.0005, 0.0005, 0.0);
+  const cv::Mat shifted =
+      compositor.composite(frame, camera, result, moved, "frame 45 tracking")(box).clone();
+  const double shiftedShare =
+      differingPixels(shifted, expected, 40) / static_cast<double>(crop.total());
+  std::cout << "moved by 0.5 mm: " << 100 * shiftedShare << "% differ\n";
+  EXPECT_GT(shiftedShare, 0.01);
 }
