@@ -18,6 +18,7 @@
 #include "app/viewer/ViewerApp.hpp"
 #include "engine/calibration/CalibrationBoard.hpp"
 #include "engine/core/Error.hpp"
+#include "engine/reference/MarkerSpec.hpp"
 #include "engine/reference/MultiReferenceMap.hpp"
 
 namespace reftrack::app {
@@ -82,7 +83,12 @@ CommandRegistration registerViewCommand(CLI::App& parent) {
       "the source frame rate) and OUT_trajectory.txt (TUM) beside it.\n"
       "--calibrate BOARD opens the Calibration panel (capture views, coverage, calibrate, save\n"
       "camera.yml, use it for tracking); --camera is then optional. Headless, every frame is\n"
-      "examined, views are captured automatically and the camera is calibrated at the end.");
+      "examined, views are captured automatically and the camera is calibrated at the end.\n"
+      "--marker DICT:ID:SIZE or --board BOARD opens the Map panel: capture references (posed by\n"
+      "the marker / board, or by tracking once a map exists), Build map (prepare's pipeline),\n"
+      "Add to map (extend's), Save map. Headless: --capture-at I,J,... captures those frames,\n"
+      "builds the map, tracks the whole input on it from its first frame, and writes --map-out\n"
+      "and --trajectory.");
   sub->add_option("--input", o.input, "Frame source SRC")->required();
   sub->add_option("--camera", o.camera, "camera.yml (required unless SRC is sim: or euroc:)")
       ->check(CLI::ExistingFile);
@@ -138,72 +144,114 @@ CommandRegistration registerViewCommand(CLI::App& parent) {
       ->check(CLI::Range(1, 100000));
   sub->add_option("--calibration-out", o.calibrationOut,
                   "Headless --calibrate: write the calibrated camera.yml here");
+  CLI::Option* marker =
+      sub->add_option("--marker", o.mapMarker,
+                      "Map panel: the world frame from this ArUco marker DICT:ID:SIDE_M, e.g. "
+                      "DICT_6X6_250:23:0.2")
+          ->check(parsingValidator<MarkerSpec>("MARKER"));
+  CLI::Option* board =
+      sub->add_option("--board", o.mapBoard,
+                      "Map panel: the world frame from this calibration board in view, "
+                      "chessboard:COLSxROWS:SQUARE_M (inner corners) or "
+                      "charuco:DICT:SQXxSQY:SQUARE_M:MARKER_M")
+          ->check(parsingValidator<CalibrationBoard>("BOARD"));
+  marker->excludes(board);
+  sub->add_option("--capture-at", o.captureAt,
+                  "Headless, with --marker/--board: capture these frames as references, build "
+                  "the map and track the input on it")
+      ->delimiter(',')
+      ->check(CLI::NonNegativeNumber);
+  sub->add_option("--map-out", o.mapOut, "Headless --capture-at: write the map folder here");
+  sub->add_option("--trajectory", o.trajectory,
+                  "Headless: write the tracked poses here (TUM, camera in world)");
 
-  return {sub, [args, sub] {
-            ViewerOptions options = args->options;
-            if (sub->count("--overlay-cube") > 0) options.cubeSize = args->cubeSize;
-            options.source.simSize = *parseImageSize(args->simSize);
-            if (args->map.empty() != args->reference.empty())
-              options.mode = args->map.empty() ? TrackingMode::Homography : TrackingMode::SixDof;
-            if (!args->map.empty() || !args->reference.empty()) {
-              // Live tracking: 6-DOF against the map and/or homography against the reference;
-              // the Tracking panel's mode switch selects between those given.
-              const std::filesystem::path map = args->map, reference = args->reference,
-                                          labels = args->labels;
-              options.makeTracker = [map, reference, labels](const PinholeCamera& camera,
-                                                             const TrackerParams& params) {
-                std::unique_ptr<FrameTracker> sixDof, homography;
-                if (!map.empty())
-                  sixDof = std::make_unique<PoseFrameTracker>(loadMapFor(map, camera), params);
-                if (!reference.empty()) {
-                  const cv::Mat ref = cv::imread(reference.string(), cv::IMREAD_COLOR);
-                  if (ref.empty())
-                    throw Error("reference frame '" + reference.string() + "' cannot be read");
-                  homography = std::make_unique<HomographyFrameTracker>(
-                      ref, params, camera,
-                      labels.empty() ? AnnotationSet{} : AnnotationSet::load(labels));
-                }
-                const TrackingMode initial = map.empty()         ? TrackingMode::Homography
-                                             : reference.empty() ? TrackingMode::SixDof
-                                                                 : params.mode;
-                return std::unique_ptr<FrameTracker>(std::make_unique<ModeSwitchingTracker>(
-                    std::move(sixDof), std::move(homography), initial));
-              };
+  return {
+      sub, [args, sub] {
+        ViewerOptions options = args->options;
+        if (sub->count("--overlay-cube") > 0) options.cubeSize = args->cubeSize;
+        options.source.simSize = *parseImageSize(args->simSize);
+        if (args->map.empty() != args->reference.empty())
+          options.mode = args->map.empty() ? TrackingMode::Homography : TrackingMode::SixDof;
+        if (!args->map.empty() || !args->reference.empty()) {
+          // Live tracking: 6-DOF against the map and/or homography against the reference;
+          // the Tracking panel's mode switch selects between those given.
+          const std::filesystem::path map = args->map, reference = args->reference,
+                                      labels = args->labels;
+          options.makeTracker = [map, reference, labels](const PinholeCamera& camera,
+                                                         const TrackerParams& params) {
+            std::unique_ptr<FrameTracker> sixDof, homography;
+            if (!map.empty())
+              sixDof = std::make_unique<PoseFrameTracker>(loadMapFor(map, camera), params);
+            if (!reference.empty()) {
+              const cv::Mat ref = cv::imread(reference.string(), cv::IMREAD_COLOR);
+              if (ref.empty())
+                throw Error("reference frame '" + reference.string() + "' cannot be read");
+              homography = std::make_unique<HomographyFrameTracker>(
+                  ref, params, camera,
+                  labels.empty() ? AnnotationSet{} : AnnotationSet::load(labels));
             }
-            const ViewerRunSummary s = runViewer(options);
-            std::cout << "processed " << s.framesProcessed << " frames in " << s.seconds << " s ("
-                      << s.backend << ")\n";
-            if (!s.recording.empty())
-              std::cout << "recorded " << s.recording.string() << " and " << s.trajectory.string()
-                        << "\n";
-            if (!s.screenshot.empty()) std::cout << "screenshot " << s.screenshot.string() << "\n";
-            if (s.predictedErrorFrames > 0)
-              std::printf("overlay error of the cube: predicted mean %.3f px over %d frames\n",
-                          s.predictedErrorMeanPx, s.predictedErrorFrames);
-            if (s.trueErrorFrames > 0)
-              std::printf(
-                  "overlay error of the cube: true mean %.3f px over %d frames (ground "
-                  "truth)\n",
-                  s.trueErrorMeanPx, s.trueErrorFrames);
-            if (s.soak) printSoakSummary(std::cout, *s.soak);
-            if (!options.calibrateBoard.empty() && options.headless) {
-              std::printf("calibration: %d views captured, %d rejected\n", s.calibrationCaptured,
-                          s.calibrationRejected);
-              if (s.calibration) {
-                const CalibrationResult& r = *s.calibration;
-                std::printf("RMS reprojection error: %.4f px\n", r.rmsPx);
-                std::printf("fx %.3f  fy %.3f  cx %.3f  cy %.3f\n", r.camera.fx(), r.camera.fy(),
-                            r.camera.cx(), r.camera.cy());
-                for (const CalibrationViewError& v : r.views)
-                  std::printf("  %-10s %4d corners  %.4f px\n", v.label.c_str(), v.corners,
-                              v.rmsPx);
-              } else {
-                std::printf("%s\n", s.calibrationMessage.c_str());
-              }
-              if (!s.calibrationFile.empty())
-                std::printf("wrote %s\n", s.calibrationFile.string().c_str());
-            }
-          }};
+            const TrackingMode initial = map.empty()         ? TrackingMode::Homography
+                                         : reference.empty() ? TrackingMode::SixDof
+                                                             : params.mode;
+            return std::unique_ptr<FrameTracker>(std::make_unique<ModeSwitchingTracker>(
+                std::move(sixDof), std::move(homography), initial));
+          };
+        }
+        const ViewerRunSummary s = runViewer(options);
+        std::cout << "processed " << s.framesProcessed << " frames in " << s.seconds << " s ("
+                  << s.backend << ")\n";
+        if (!s.recording.empty())
+          std::cout << "recorded " << s.recording.string() << " and " << s.trajectory.string()
+                    << "\n";
+        if (!s.screenshot.empty()) std::cout << "screenshot " << s.screenshot.string() << "\n";
+        if (s.predictedErrorFrames > 0)
+          std::printf("overlay error of the cube: predicted mean %.3f px over %d frames\n",
+                      s.predictedErrorMeanPx, s.predictedErrorFrames);
+        if (s.trueErrorFrames > 0)
+          std::printf(
+              "overlay error of the cube: true mean %.3f px over %d frames (ground "
+              "truth)\n",
+              s.trueErrorMeanPx, s.trueErrorFrames);
+        if (s.soak) printSoakSummary(std::cout, *s.soak);
+        if (!s.captures.empty() || s.mapReferences > 0) {
+          for (std::size_t i = 0; i < s.captures.size(); ++i) {
+            const ViewerRunSummary::Capture& c = s.captures[i];
+            // The camera in the world, as a TUM line: `capture I FRAME t tx ty tz qx qy qz qw`.
+            const RigidPose cw = c.worldToCamera.inverse();
+            const Eigen::Quaterniond q(cw.rotation());
+            const Eigen::Vector3d t = cw.translation();
+            std::printf(
+                "capture %zu frame %d t %.6f centre %.6f %.6f %.6f quat %.9f %.9f %.9f %.9f "
+                "(pose from the %s",
+                i, c.frameIndex, c.timestamp, t.x(), t.y(), t.z(), q.x(), q.y(), q.z(), q.w(),
+                c.poseFrom.c_str());
+            if (c.fiducialRmsPx >= 0) std::printf(", corner RMS %.3f px", c.fiducialRmsPx);
+            std::printf(")\n");
+          }
+          std::printf("map: %d references, %zu points\n", s.mapReferences, s.mapPoints);
+          if (!s.mapFolder.empty()) std::printf("wrote map %s\n", s.mapFolder.string().c_str());
+        }
+        if (!s.trajectoryFile.empty())
+          std::printf("tracked %d of %d frames (%.1f%%); wrote trajectory %s\n", s.trackedFrames,
+                      s.framesProcessed, 100.0 * s.trackedFrames / std::max(1, s.framesProcessed),
+                      s.trajectoryFile.string().c_str());
+        if (!options.calibrateBoard.empty() && options.headless) {
+          std::printf("calibration: %d views captured, %d rejected\n", s.calibrationCaptured,
+                      s.calibrationRejected);
+          if (s.calibration) {
+            const CalibrationResult& r = *s.calibration;
+            std::printf("RMS reprojection error: %.4f px\n", r.rmsPx);
+            std::printf("fx %.3f  fy %.3f  cx %.3f  cy %.3f\n", r.camera.fx(), r.camera.fy(),
+                        r.camera.cx(), r.camera.cy());
+            for (const CalibrationViewError& v : r.views)
+              std::printf("  %-10s %4d corners  %.4f px\n", v.label.c_str(), v.corners, v.rmsPx);
+          } else {
+            std::printf("%s\n", s.calibrationMessage.c_str());
+          }
+          if (!s.calibrationFile.empty())
+            std::printf("wrote %s\n", s.calibrationFile.string().c_str());
+        }
+      }};
 }
 
 const CommandRegistrar registrar(50, registerViewCommand);
