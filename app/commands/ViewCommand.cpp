@@ -64,6 +64,33 @@ MultiReferenceMap loadMapFor(const std::filesystem::path& folder, const PinholeC
   return map;
 }
 
+// Live mapping (headless --capture-at): the captured references, each with its camera in the
+// world as in a TUM line (`capture I frame F t T centre X Y Z quat QX QY QZ QW`), the map and the
+// tracked fraction.
+void printMapSummary(const ViewerRunSummary& s) {
+  if (!s.captures.empty() || s.mapReferences > 0) {
+    for (std::size_t i = 0; i < s.captures.size(); ++i) {
+      const ViewerRunSummary::Capture& c = s.captures[i];
+      const RigidPose cw = c.worldToCamera.inverse();
+      const Eigen::Quaterniond q(cw.rotation());
+      const Eigen::Vector3d t = cw.translation();
+      std::printf(
+          "capture %zu frame %d t %.6f centre %.6f %.6f %.6f quat %.9f %.9f %.9f %.9f (pose from "
+          "the %s",
+          i, c.frameIndex, c.timestamp, t.x(), t.y(), t.z(), q.x(), q.y(), q.z(), q.w(),
+          c.poseFrom.c_str());
+      if (c.fiducialRmsPx >= 0) std::printf(", corner RMS %.3f px", c.fiducialRmsPx);
+      std::printf(")\n");
+    }
+    std::printf("map: %d references, %zu points\n", s.mapReferences, s.mapPoints);
+    if (!s.mapFolder.empty()) std::printf("wrote map %s\n", s.mapFolder.string().c_str());
+  }
+  if (!s.trajectoryFile.empty())
+    std::printf("tracked %d of %d frames (%.1f%%); wrote trajectory %s\n", s.trackedFrames,
+                s.framesProcessed, 100.0 * s.trackedFrames / std::max(1, s.framesProcessed),
+                s.trajectoryFile.string().c_str());
+}
+
 CommandRegistration registerViewCommand(CLI::App& parent) {
   auto args = std::make_shared<ViewArgs>();
   ViewerOptions& o = args->options;
@@ -165,93 +192,72 @@ CommandRegistration registerViewCommand(CLI::App& parent) {
   sub->add_option("--trajectory", o.trajectory,
                   "Headless: write the tracked poses here (TUM, camera in world)");
 
-  return {
-      sub, [args, sub] {
-        ViewerOptions options = args->options;
-        if (sub->count("--overlay-cube") > 0) options.cubeSize = args->cubeSize;
-        options.source.simSize = *parseImageSize(args->simSize);
-        if (args->map.empty() != args->reference.empty())
-          options.mode = args->map.empty() ? TrackingMode::Homography : TrackingMode::SixDof;
-        if (!args->map.empty() || !args->reference.empty()) {
-          // Live tracking: 6-DOF against the map and/or homography against the reference;
-          // the Tracking panel's mode switch selects between those given.
-          const std::filesystem::path map = args->map, reference = args->reference,
-                                      labels = args->labels;
-          options.makeTracker = [map, reference, labels](const PinholeCamera& camera,
-                                                         const TrackerParams& params) {
-            std::unique_ptr<FrameTracker> sixDof, homography;
-            if (!map.empty())
-              sixDof = std::make_unique<PoseFrameTracker>(loadMapFor(map, camera), params);
-            if (!reference.empty()) {
-              const cv::Mat ref = cv::imread(reference.string(), cv::IMREAD_COLOR);
-              if (ref.empty())
-                throw Error("reference frame '" + reference.string() + "' cannot be read");
-              homography = std::make_unique<HomographyFrameTracker>(
-                  ref, params, camera,
-                  labels.empty() ? AnnotationSet{} : AnnotationSet::load(labels));
+  return {sub, [args, sub] {
+            ViewerOptions options = args->options;
+            if (sub->count("--overlay-cube") > 0) options.cubeSize = args->cubeSize;
+            options.source.simSize = *parseImageSize(args->simSize);
+            if (args->map.empty() != args->reference.empty())
+              options.mode = args->map.empty() ? TrackingMode::Homography : TrackingMode::SixDof;
+            if (!args->map.empty() || !args->reference.empty()) {
+              // Live tracking: 6-DOF against the map and/or homography against the reference;
+              // the Tracking panel's mode switch selects between those given.
+              const std::filesystem::path map = args->map, reference = args->reference,
+                                          labels = args->labels;
+              options.makeTracker = [map, reference, labels](const PinholeCamera& camera,
+                                                             const TrackerParams& params) {
+                std::unique_ptr<FrameTracker> sixDof, homography;
+                if (!map.empty())
+                  sixDof = std::make_unique<PoseFrameTracker>(loadMapFor(map, camera), params);
+                if (!reference.empty()) {
+                  const cv::Mat ref = cv::imread(reference.string(), cv::IMREAD_COLOR);
+                  if (ref.empty())
+                    throw Error("reference frame '" + reference.string() + "' cannot be read");
+                  homography = std::make_unique<HomographyFrameTracker>(
+                      ref, params, camera,
+                      labels.empty() ? AnnotationSet{} : AnnotationSet::load(labels));
+                }
+                const TrackingMode initial = map.empty()         ? TrackingMode::Homography
+                                             : reference.empty() ? TrackingMode::SixDof
+                                                                 : params.mode;
+                return std::unique_ptr<FrameTracker>(std::make_unique<ModeSwitchingTracker>(
+                    std::move(sixDof), std::move(homography), initial));
+              };
             }
-            const TrackingMode initial = map.empty()         ? TrackingMode::Homography
-                                         : reference.empty() ? TrackingMode::SixDof
-                                                             : params.mode;
-            return std::unique_ptr<FrameTracker>(std::make_unique<ModeSwitchingTracker>(
-                std::move(sixDof), std::move(homography), initial));
-          };
-        }
-        const ViewerRunSummary s = runViewer(options);
-        std::cout << "processed " << s.framesProcessed << " frames in " << s.seconds << " s ("
-                  << s.backend << ")\n";
-        if (!s.recording.empty())
-          std::cout << "recorded " << s.recording.string() << " and " << s.trajectory.string()
-                    << "\n";
-        if (!s.screenshot.empty()) std::cout << "screenshot " << s.screenshot.string() << "\n";
-        if (s.predictedErrorFrames > 0)
-          std::printf("overlay error of the cube: predicted mean %.3f px over %d frames\n",
-                      s.predictedErrorMeanPx, s.predictedErrorFrames);
-        if (s.trueErrorFrames > 0)
-          std::printf(
-              "overlay error of the cube: true mean %.3f px over %d frames (ground "
-              "truth)\n",
-              s.trueErrorMeanPx, s.trueErrorFrames);
-        if (s.soak) printSoakSummary(std::cout, *s.soak);
-        if (!s.captures.empty() || s.mapReferences > 0) {
-          for (std::size_t i = 0; i < s.captures.size(); ++i) {
-            const ViewerRunSummary::Capture& c = s.captures[i];
-            // The camera in the world, as a TUM line: `capture I FRAME t tx ty tz qx qy qz qw`.
-            const RigidPose cw = c.worldToCamera.inverse();
-            const Eigen::Quaterniond q(cw.rotation());
-            const Eigen::Vector3d t = cw.translation();
-            std::printf(
-                "capture %zu frame %d t %.6f centre %.6f %.6f %.6f quat %.9f %.9f %.9f %.9f "
-                "(pose from the %s",
-                i, c.frameIndex, c.timestamp, t.x(), t.y(), t.z(), q.x(), q.y(), q.z(), q.w(),
-                c.poseFrom.c_str());
-            if (c.fiducialRmsPx >= 0) std::printf(", corner RMS %.3f px", c.fiducialRmsPx);
-            std::printf(")\n");
-          }
-          std::printf("map: %d references, %zu points\n", s.mapReferences, s.mapPoints);
-          if (!s.mapFolder.empty()) std::printf("wrote map %s\n", s.mapFolder.string().c_str());
-        }
-        if (!s.trajectoryFile.empty())
-          std::printf("tracked %d of %d frames (%.1f%%); wrote trajectory %s\n", s.trackedFrames,
-                      s.framesProcessed, 100.0 * s.trackedFrames / std::max(1, s.framesProcessed),
-                      s.trajectoryFile.string().c_str());
-        if (!options.calibrateBoard.empty() && options.headless) {
-          std::printf("calibration: %d views captured, %d rejected\n", s.calibrationCaptured,
-                      s.calibrationRejected);
-          if (s.calibration) {
-            const CalibrationResult& r = *s.calibration;
-            std::printf("RMS reprojection error: %.4f px\n", r.rmsPx);
-            std::printf("fx %.3f  fy %.3f  cx %.3f  cy %.3f\n", r.camera.fx(), r.camera.fy(),
-                        r.camera.cx(), r.camera.cy());
-            for (const CalibrationViewError& v : r.views)
-              std::printf("  %-10s %4d corners  %.4f px\n", v.label.c_str(), v.corners, v.rmsPx);
-          } else {
-            std::printf("%s\n", s.calibrationMessage.c_str());
-          }
-          if (!s.calibrationFile.empty())
-            std::printf("wrote %s\n", s.calibrationFile.string().c_str());
-        }
-      }};
+            const ViewerRunSummary s = runViewer(options);
+            std::cout << "processed " << s.framesProcessed << " frames in " << s.seconds << " s ("
+                      << s.backend << ")\n";
+            if (!s.recording.empty())
+              std::cout << "recorded " << s.recording.string() << " and " << s.trajectory.string()
+                        << "\n";
+            if (!s.screenshot.empty()) std::cout << "screenshot " << s.screenshot.string() << "\n";
+            if (s.predictedErrorFrames > 0)
+              std::printf("overlay error of the cube: predicted mean %.3f px over %d frames\n",
+                          s.predictedErrorMeanPx, s.predictedErrorFrames);
+            if (s.trueErrorFrames > 0)
+              std::printf(
+                  "overlay error of the cube: true mean %.3f px over %d frames (ground "
+                  "truth)\n",
+                  s.trueErrorMeanPx, s.trueErrorFrames);
+            if (s.soak) printSoakSummary(std::cout, *s.soak);
+            printMapSummary(s);
+            if (!options.calibrateBoard.empty() && options.headless) {
+              std::printf("calibration: %d views captured, %d rejected\n", s.calibrationCaptured,
+                          s.calibrationRejected);
+              if (s.calibration) {
+                const CalibrationResult& r = *s.calibration;
+                std::printf("RMS reprojection error: %.4f px\n", r.rmsPx);
+                std::printf("fx %.3f  fy %.3f  cx %.3f  cy %.3f\n", r.camera.fx(), r.camera.fy(),
+                            r.camera.cx(), r.camera.cy());
+                for (const CalibrationViewError& v : r.views)
+                  std::printf("  %-10s %4d corners  %.4f px\n", v.label.c_str(), v.corners,
+                              v.rmsPx);
+              } else {
+                std::printf("%s\n", s.calibrationMessage.c_str());
+              }
+              if (!s.calibrationFile.empty())
+                std::printf("wrote %s\n", s.calibrationFile.string().c_str());
+            }
+          }};
 }
 
 const CommandRegistrar registrar(50, registerViewCommand);
