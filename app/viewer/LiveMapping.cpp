@@ -129,8 +129,12 @@ LiveMapping::Work LiveMapping::build(std::vector<Captured> captures) const {
   }
   const MultiReferencePreparer preparer(camera_, params_.preparation);
   const std::shared_ptr<std::atomic<int>> done = done_;
-  MultiPreparation p = preparer.prepare(images, poses, fiducial_.description(),
-                                        [done](const ReferencePairReport&) { ++*done; });
+  const auto progress = [done](const ReferencePairReport&) { ++*done; };
+  std::vector<RigidPose> given;
+  for (const MeasuredPose& m : poses) given.push_back(m.worldToCamera);
+  MultiPreparation p = fiducial_.refinedLikeAMarker()
+                           ? preparer.prepare(images, poses, fiducial_.description(), progress)
+                           : preparer.prepare(images, given, fiducial_.description(), progress);
   Work w;
   w.message = "map built: " + std::to_string(p.map.size()) + " references, " +
               std::to_string(p.map.points.size()) + " points";
