@@ -166,6 +166,7 @@ void LiveMapping::start(std::function<Work()> work, const std::string& label, Ma
   state.message.clear();
   state.messageIsError = false;
   state.workLabel = label;
+  workStart_ = std::chrono::steady_clock::now();
   if (background_) {
     working_ = std::async(std::launch::async, std::move(work));
   } else {
@@ -262,6 +263,7 @@ void LiveMapping::update(const Frame& frame, const std::optional<RigidPose>& tra
       for (MapCapture& s : shown_) s.inMap = false;
       done_->store(0);
       total_ = static_cast<int>(measured.size() * (measured.size() - 1) / 2);
+      unit_ = "pairs matched";
       start([this, measured] { return this->build(measured); }, "building the map", state);
       if (left > 0 && !state.messageIsError)
         state.message += (state.message.empty() ? "" : "; ") + std::to_string(left) +
@@ -278,6 +280,7 @@ void LiveMapping::update(const Frame& frame, const std::optional<RigidPose>& tra
     } else {
       done_->store(0);
       total_ = static_cast<int>(pending.size());
+      unit_ = "references added";
       start([this, map = *map_, pending] { return this->extend(map, pending); },
             "adding to the map", state);
     }
@@ -365,6 +368,13 @@ void LiveMapping::report(MapState& state) {
   state.progress =
       state.working ? std::clamp(static_cast<float>(done_->load()) / std::max(1, total_), 0.f, 1.f)
                     : 0.0f;
+  state.progressText.clear();
+  if (state.working)
+    state.progressText =
+        std::to_string(done_->load()) + " of " + std::to_string(total_) + " " + unit_ + ", " +
+        fixed(std::chrono::duration<double>(std::chrono::steady_clock::now() - workStart_).count(),
+              1) +
+        " s";
   state.mapReferences = map_ ? map_->size() : 0;
   state.mapPoints = map_ ? map_->points.size() : 0;
 }

@@ -7,6 +7,7 @@
 // thread in the window and in line headless, and saves the map folder atomically. Reports into
 // MapState; the viewer puts each new map to use for tracking (takeMapForTracking).
 #include <atomic>
+#include <chrono>
 #include <filesystem>
 #include <future>
 #include <memory>
@@ -83,6 +84,8 @@ class LiveMapping {
   std::future<Work> working_;
   std::shared_ptr<std::atomic<int>> done_ = std::make_shared<std::atomic<int>>(0);
   int total_ = 1;
+  std::string unit_;  // what total_ counts
+  std::chrono::steady_clock::time_point workStart_;
   std::vector<render::Texture2D> thumbnails_;
   bool thumbnailsStale_ = false;
 };

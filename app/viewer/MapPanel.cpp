@@ -80,7 +80,8 @@ void drawMapPanel(MapState& state, const cv::Rect2f& placement) {
 
   ImGui::Separator();
   if (state.working) {
-    ImGui::ProgressBar(state.progress, ImVec2(-1, 0), state.workLabel.c_str());
+    ImGui::TextUnformatted(state.workLabel.c_str());
+    ImGui::ProgressBar(state.progress, ImVec2(-1, 0), state.progressText.c_str());
   } else {
     if (button("Build map", true)) state.buildRequested = true;
     ImGui::SameLine();

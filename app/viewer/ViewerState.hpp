@@ -95,8 +95,9 @@ struct MapState {
   cv::Size thumbnailSize{0, 0};
   bool working = false;  // building or adding on the worker thread
   std::string workLabel;
-  float progress = 0.0f;  // of the work, 0..1
-  int mapReferences = 0;  // 0: no map yet
+  float progress = 0.0f;     // of the work, 0..1
+  std::string progressText;  // on the bar: steps done and seconds so far
+  int mapReferences = 0;     // 0: no map yet
   std::size_t mapPoints = 0;
   bool tracking = false;  // the live tracker runs on this map
   std::string message;    // last action's result or error

@@ -177,6 +177,8 @@ TEST_F(LiveMappingTest, BuildsOnAWorkerThreadWhileTheLoopGoesOn) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   EXPECT_TRUE(state.working);
   EXPECT_EQ(state.workLabel, "building the map");
+  EXPECT_NE(state.progressText.find(" of 1 pairs matched, "), std::string::npos)
+      << state.progressText;
   // A second request while it runs is refused with a message.
   state.buildRequested = true;
   m.update(frame(32), std::nullopt, state);
