@@ -90,9 +90,11 @@ void drawMapPanel(MapState& state, const cv::Rect2f& placement) {
   if (state.mapReferences > 0)
     ImGui::Text("map: %d references, %zu points%s", state.mapReferences, state.mapPoints,
                 state.tracking ? ", tracking" : "");
-  ImGui::PushItemWidth(-90);
-  ImGui::InputText("folder", &state.savePath);
-  ImGui::PopItemWidth();
+  // The folder to save to, with the button beside it.
+  ImGui::SetNextItemWidth(
+      std::max(60.0f, ImGui::GetContentRegionAvail().x - ImGui::CalcTextSize("Save map").x -
+                          2 * ImGui::GetStyle().FramePadding.x - ImGui::GetStyle().ItemSpacing.x));
+  ImGui::InputText("##folder", &state.savePath);
   ImGui::SameLine();
   if (button("Save map", state.mapReferences > 0 && !state.working)) state.saveRequested = true;
   if (!state.message.empty()) {
