@@ -18,6 +18,7 @@
 #include "app/viewer/ViewerApp.hpp"
 #include "engine/calibration/CalibrationBoard.hpp"
 #include "engine/core/Error.hpp"
+#include "engine/reference/MarkerSpec.hpp"
 #include "engine/reference/MultiReferenceMap.hpp"
 
 namespace reftrack::app {
@@ -64,6 +65,33 @@ MultiReferenceMap loadMapFor(const std::filesystem::path& folder, const PinholeC
   return map;
 }
 
+// Live mapping (headless --capture-at): the captured references, each with its camera in the
+// world as in a TUM line (`capture I frame F t T centre X Y Z quat QX QY QZ QW`), the map and the
+// tracked fraction.
+void printMapSummary(const ViewerRunSummary& s) {
+  if (!s.captures.empty() || s.mapReferences > 0) {
+    for (std::size_t i = 0; i < s.captures.size(); ++i) {
+      const ViewerRunSummary::Capture& c = s.captures[i];
+      const RigidPose cw = c.worldToCamera.inverse();
+      const Eigen::Quaterniond q(cw.rotation());
+      const Eigen::Vector3d t = cw.translation();
+      std::printf(
+          "capture %zu frame %d t %.6f centre %.6f %.6f %.6f quat %.9f %.9f %.9f %.9f (pose from "
+          "the %s",
+          i, c.frameIndex, c.timestamp, t.x(), t.y(), t.z(), q.x(), q.y(), q.z(), q.w(),
+          c.poseFrom.c_str());
+      if (c.fiducialRmsPx >= 0) std::printf(", corner RMS %.3f px", c.fiducialRmsPx);
+      std::printf(")\n");
+    }
+    std::printf("map: %d references, %zu points\n", s.mapReferences, s.mapPoints);
+    if (!s.mapFolder.empty()) std::printf("wrote map %s\n", s.mapFolder.string().c_str());
+  }
+  if (!s.trajectoryFile.empty())
+    std::printf("tracked %d of %d frames (%.1f%%); wrote trajectory %s\n", s.trackedFrames,
+                s.framesProcessed, 100.0 * s.trackedFrames / std::max(1, s.framesProcessed),
+                s.trajectoryFile.string().c_str());
+}
+
 CommandRegistration registerViewCommand(CLI::App& parent) {
   auto args = std::make_shared<ViewArgs>();
   ViewerOptions& o = args->options;
@@ -83,7 +111,12 @@ CommandRegistration registerViewCommand(CLI::App& parent) {
       "the source frame rate) and OUT_trajectory.txt (TUM) beside it.\n"
       "--calibrate BOARD opens the Calibration panel (capture views, coverage, calibrate, save\n"
       "camera.yml, use it for tracking); --camera is then optional. Headless, every frame is\n"
-      "examined, views are captured automatically and the camera is calibrated at the end.");
+      "examined, views are captured automatically and the camera is calibrated at the end.\n"
+      "--marker DICT:ID:SIZE or --board BOARD opens the Map panel: capture references (posed by\n"
+      "the marker / board, or by tracking once a map exists), Build map (prepare's pipeline),\n"
+      "Add to map (extend's), Save map. Headless: --capture-at I,J,... captures those frames,\n"
+      "builds the map, tracks the whole input on it from its first frame, and writes --map-out\n"
+      "and --trajectory.");
   sub->add_option("--input", o.input, "Frame source SRC")->required();
   sub->add_option("--camera", o.camera, "camera.yml (required unless SRC is sim: or euroc:)")
       ->check(CLI::ExistingFile);
@@ -150,6 +183,26 @@ CommandRegistration registerViewCommand(CLI::App& parent) {
       ->check(CLI::Range(1, 100000));
   sub->add_option("--calibration-out", o.calibrationOut,
                   "Headless --calibrate: write the calibrated camera.yml here");
+  CLI::Option* marker =
+      sub->add_option("--marker", o.mapMarker,
+                      "Map panel: the world frame from this ArUco marker DICT:ID:SIDE_M, e.g. "
+                      "DICT_6X6_250:23:0.2")
+          ->check(parsingValidator<MarkerSpec>("MARKER"));
+  CLI::Option* board =
+      sub->add_option("--board", o.mapBoard,
+                      "Map panel: the world frame from this calibration board in view, "
+                      "chessboard:COLSxROWS:SQUARE_M (inner corners) or "
+                      "charuco:DICT:SQXxSQY:SQUARE_M:MARKER_M")
+          ->check(parsingValidator<CalibrationBoard>("BOARD"));
+  marker->excludes(board);
+  sub->add_option("--capture-at", o.captureAt,
+                  "Headless, with --marker/--board: capture these frames as references, build "
+                  "the map and track the input on it")
+      ->delimiter(',')
+      ->check(CLI::NonNegativeNumber);
+  sub->add_option("--map-out", o.mapOut, "Headless --capture-at: write the map folder here");
+  sub->add_option("--trajectory", o.trajectory,
+                  "Headless: write the tracked poses here (TUM, camera in world)");
 
   return {sub, [args, sub] {
             ViewerOptions options = args->options;
@@ -200,6 +253,7 @@ CommandRegistration registerViewCommand(CLI::App& parent) {
                   "truth)\n",
                   s.trueErrorMeanPx, s.trueErrorFrames);
             if (s.soak) printSoakSummary(std::cout, *s.soak);
+            printMapSummary(s);
             if (!options.calibrateBoard.empty() && options.headless) {
               std::printf("calibration: %d views captured, %d rejected\n", s.calibrationCaptured,
                           s.calibrationRejected);

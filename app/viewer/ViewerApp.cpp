@@ -25,9 +25,12 @@
 #include "app/sources/SimulatorSource.hpp"
 #include "app/viewer/CalibrationPanel.hpp"
 #include "app/viewer/LiveCalibration.hpp"
+#include "app/viewer/LiveMapping.hpp"
+#include "app/viewer/MapPanel.hpp"
 #include "app/viewer/OverlayCompositor.hpp"
 #include "app/viewer/OverlayPanel.hpp"
 #include "app/viewer/PanelLayout.hpp"
+#include "app/viewer/PoseFrameTracker.hpp"
 #include "app/viewer/RecordPanel.hpp"
 #include "app/viewer/ReferencesPanel.hpp"
 #include "app/viewer/SourcePanel.hpp"
@@ -38,6 +41,7 @@
 #include "app/viewer/ViewerState.hpp"
 #include "engine/core/AtomicFile.hpp"
 #include "engine/core/Error.hpp"
+#include "engine/geometry/TumTrajectory.hpp"
 #include "engine/tracking/PredictedOverlayError.hpp"
 #include "render/RenderTarget.hpp"
 #include "render/context/GlfwWindowContext.hpp"
@@ -75,6 +79,24 @@ void ViewerOptions::check() const {
   if (reportEvery < 0) throw Error("--report-every must not be negative");
   if (reportEvery > 0 && !headless) throw Error("--report-every applies to --headless runs");
   if (soakWarmup < 0) throw Error("--soak-warmup must not be negative");
+  if (!mapMarker.empty() && !mapBoard.empty())
+    throw Error("--marker and --board both fix the world frame: give one");
+  if (!mapMarker.empty()) MarkerSpec::parse(mapMarker);  // throws on a bad marker
+  if (!mapBoard.empty()) CalibrationBoard::parse(mapBoard);
+  const bool mapping = !mapMarker.empty() || !mapBoard.empty();
+  if (!captureAt.empty() && !mapping) throw Error("--capture-at needs --marker or --board");
+  if (!mapOut.empty() && !mapping) throw Error("--map-out needs --marker or --board");
+  if ((!captureAt.empty() || !mapOut.empty()) && !headless)
+    throw Error(
+        "--capture-at and --map-out apply to --headless runs (the window has the Map panel)");
+  if (!mapOut.empty() && captureAt.empty())
+    throw Error("--map-out needs --capture-at I,J,... (the frames the map is built from)");
+  for (int i : captureAt)
+    if (i < 0) throw Error("--capture-at: frame indices must not be negative");
+  if (mapping && !poses.empty())
+    throw Error("--poses replays a trajectory: it cannot be combined with --marker / --board");
+  if (!trajectory.empty() && !headless)
+    throw Error("--trajectory applies to --headless runs (the window records with Record)");
 }
 
 bool windowSystemAvailable() {
@@ -101,6 +123,7 @@ struct Session {
       makeTracker;
   Frame first;
   std::vector<render::Texture2D> referenceThumbnails;  // the References panel's images
+  bool trackerOnLiveMap = false;  // the tracker runs on the map built in the Map panel
 };
 
 // The References panel's thumbnails (GL textures, ~96 px wide) of the tracker's reference map;
@@ -154,6 +177,7 @@ Session openSession(const ViewerOptions& options, ViewerState& state) {
   // live tracker is built until the calibrated camera is put to use.
   const bool guessCamera = options.camera.empty() && !sim && !options.calibrateBoard.empty();
   s.makeTracker = options.makeTracker;
+  const bool mapping = !options.mapMarker.empty() || !options.mapBoard.empty();
   if (guessCamera) {
     cameraName = "the guessed camera";
   } else if (!options.camera.empty()) {
@@ -175,12 +199,12 @@ Session openSession(const ViewerOptions& options, ViewerState& state) {
         TrajectoryReplayTracker::load(options.poses, source->fps()));
   else if (options.makeTracker && !guessCamera)
     s.tracker = options.makeTracker(s.camera, state.settings.tracker);
-  else if (sim)
+  else if (sim && !mapping)
     s.tracker = std::make_unique<TrajectoryReplayTracker>(sim->groundTruth(), source->fps());
   if (s.tracker) s.tracker->applyParams(state.settings.tracker);
   // Ground truth beside a live tracker (a replayed trajectory is its own truth): the true overlay
   // error in the Stats panel.
-  const bool liveTracker = s.tracker && options.poses.empty() && options.makeTracker;
+  const bool liveTracker = (s.tracker && options.poses.empty() && options.makeTracker) || mapping;
   if (!options.groundTruth.empty() && liveTracker)
     s.truth = std::make_unique<TrajectoryReplayTracker>(
         TrajectoryReplayTracker::load(options.groundTruth, source->fps()));
@@ -189,6 +213,7 @@ Session openSession(const ViewerOptions& options, ViewerState& state) {
   state.stats.setGroundTruthLoaded(s.truth != nullptr);
   state.trackerName = s.tracker                            ? s.tracker->name()
                       : guessCamera && options.makeTracker ? "none until calibrated"
+                      : mapping                            ? "none until the map is built"
                                                            : "none (no --poses)";
 
   state.source.description = source->description();
@@ -219,10 +244,13 @@ struct FrameLoop {
   OverlayCompositor compositor;
   std::unique_ptr<VideoRecorder> recorder;
   std::unique_ptr<LiveCalibration> calibration;  // with --calibrate
+  std::unique_ptr<LiveMapping> mapping;          // with --marker / --board
+  std::optional<TumTrajectory> trajectory;       // the tracked poses (--trajectory)
   Frame current;
   TrackingResult result;
   Clock::time_point lastProcessed{};
   int processed = 0;
+  int trackedFrames = 0;
   int predictedFrames = 0, trueFrames = 0;  // the overlay error's sums (ViewerRunSummary)
   double predictedSumPx = 0.0, trueSumPx = 0.0;
 
@@ -299,6 +327,9 @@ struct FrameLoop {
     stats.advice = result.advice;
     if (result.references) state.references.addFrame(*result.references);
     if (result.worldToCamera) stats.pose = result.worldToCamera->toVector6();
+    if (trajectory && result.worldToCamera)
+      trajectory->poses.push_back({current.timestamp, *result.worldToCamera});
+    if (result.worldToCamera) ++trackedFrames;
     stats.predictedErrorPx = result.predictedErrorPx;
     if (session.truth && result.worldToCamera) {
       const TrackingResult truth =
@@ -331,6 +362,35 @@ struct FrameLoop {
     calibration->update(current, processed, state.calibration);
     if (std::optional<PinholeCamera> camera = calibration->takeCameraForTracking())
       useCamera(*camera);
+  }
+
+  // Live mapping: carries out the Map panel's requests for the current frame and tracks on each
+  // map it builds or extends.
+  void updateMapping() {
+    if (!mapping) return;
+    const std::optional<RigidPose> tracked =
+        session.trackerOnLiveMap ? result.worldToCamera : std::nullopt;
+    mapping->update(current, tracked, state.map);
+    if (std::optional<MultiReferenceMap> map = mapping->takeMapForTracking())
+      useMap(std::move(*map));
+    mapping->uploadThumbnails(state.map);
+  }
+
+  void useMap(MultiReferenceMap map) {
+    TrackerParams params = state.settings.tracker;
+    params.mode = TrackingMode::SixDof;
+    try {
+      auto tracker = std::make_unique<PoseFrameTracker>(std::move(map), params);
+      tracker->applyParams(params);
+      session.tracker = std::move(tracker);
+      session.trackerOnLiveMap = true;
+      state.trackerName = session.tracker->name();
+      state.map.tracking = true;
+      showReferences(session, state);
+    } catch (const std::exception& e) {
+      state.map.message = std::string("cannot track on the map: ") + e.what();
+      state.map.messageIsError = true;
+    }
   }
 
   void useCamera(const PinholeCamera& camera) {
@@ -454,7 +514,15 @@ class ImGuiSession {
 };
 
 void drawPanels(ViewerState& state, const PanelLayout& layout) {
-  if (state.calibration.active) drawCalibrationPanel(state.calibration, layout.calibration);
+  // The Map panel takes the Calibration panel's place (its lower half beside it).
+  cv::Rect2f calibration = layout.calibration, map = layout.calibration;
+  if (state.calibration.active && state.map.active) {
+    calibration.height *= 0.5f;
+    map.height -= calibration.height;
+    map.y += calibration.height;
+  }
+  if (state.calibration.active) drawCalibrationPanel(state.calibration, calibration);
+  if (state.map.active) drawMapPanel(state.map, map);
   drawSourcePanel(state.source, layout.source);
   drawTrackingPanel(state, layout.tracking);
   drawRecordPanel(state.record, layout.record);
@@ -474,6 +542,53 @@ void startCalibration(const ViewerOptions& options, FrameLoop& loop, cv::Size fr
   if (options.headless) c.autoCaptureEvery = std::max(1, options.calibrateEvery);
   if (!options.calibrationOut.empty()) c.savePath = options.calibrationOut.string();
   loop.calibration = std::make_unique<LiveCalibration>(frameSize, !options.headless, c);
+}
+
+// Opens the Map panel with `--marker SPEC` or `--board SPEC`.
+void startMapping(const ViewerOptions& options, FrameLoop& loop) {
+  if (options.mapMarker.empty() && options.mapBoard.empty()) return;
+  const PinholeCamera& camera = loop.session.camera;
+  MapExtenderParams params;
+  params.tracker = loop.state.settings.tracker;
+  WorldFrameFiducial fiducial =
+      options.mapMarker.empty()
+          ? WorldFrameFiducial::board(CalibrationBoard::parse(options.mapBoard), camera)
+          : WorldFrameFiducial::marker(MarkerSpec::parse(options.mapMarker), camera);
+  loop.state.map.active = true;
+  if (!options.mapOut.empty()) loop.state.map.savePath = options.mapOut.string();
+  loop.mapping = std::make_unique<LiveMapping>(std::move(fiducial), camera, std::move(params),
+                                               !options.headless, loop.state.map);
+}
+
+// Headless --capture-at: captures those frames, builds the map, tracks on it and rewinds the
+// input to its first frame. Throws reftrack::Error with the panel's message when a step fails.
+void captureAndBuild(const ViewerOptions& options, Session& session, FrameLoop& loop) {
+  if (options.captureAt.empty()) return;
+  MapState& m = loop.state.map;
+  if (!loop.state.source.seekable)
+    throw Error("--capture-at needs an input that can seek (a video file, an image folder, sim:)");
+  const std::optional<int> count = loop.state.source.frameCount;
+  for (int index : options.captureAt) {
+    if (count && index >= *count)
+      throw Error("--capture-at: frame " + std::to_string(index) + " is beyond the " +
+                  std::to_string(*count) + " frames of '" + options.input + "'");
+    session.grabber->seek(index);
+    std::optional<Frame> frame = session.grabber->next();
+    if (!frame)
+      throw Error("--capture-at: input '" + options.input + "' has no frame " +
+                  std::to_string(index));
+    if (!loop.mapping->capture(*frame, std::nullopt, m)) throw Error(m.message);
+    std::cout << "view: " << m.message << "\n";
+  }
+  if (!loop.mapping->buildNow(m)) throw Error(m.message);
+  std::cout << "view: " << m.message << "\n";
+  std::optional<MultiReferenceMap> map = loop.mapping->takeMapForTracking();
+  if (map) loop.useMap(std::move(*map));
+  if (!session.trackerOnLiveMap) throw Error(m.message);
+  session.grabber->seek(0);
+  std::optional<Frame> first = session.grabber->next();
+  if (!first) throw Error("input '" + options.input + "' holds no frame");
+  session.first = std::move(*first);
 }
 
 void writeScreenshot(const fs::path& file, const cv::Mat& bgr) {
@@ -507,11 +622,15 @@ ViewerRunSummary runHeadless(const ViewerOptions& options, render::GlContext& co
   FrameLoop loop(session, state);
   const cv::Size frameSize = session.first.image.size();
   startCalibration(options, loop, frameSize);
+  startMapping(options, loop);
+  captureAndBuild(options, session, loop);
+  if (!options.trajectory.empty()) loop.trajectory.emplace();
   const cv::Size canvasSize = options.ui ? options.canvasSize : frameSize;
   const std::optional<PanelLayout> layout =
-      options.ui ? std::optional<PanelLayout>(
-                       panelLayout(canvasSize, state.calibration.active, state.references.active))
-                 : std::nullopt;
+      options.ui
+          ? std::optional<PanelLayout>(panelLayout(
+                canvasSize, state.calibration.active || state.map.active, state.references.active))
+          : std::nullopt;
   const render::Viewport viewport = layout
                                         ? videoViewport(frameSize, layout->videoArea, canvasSize)
                                         : render::Viewport{0, 0, frameSize.width, frameSize.height};
@@ -537,6 +656,7 @@ ViewerRunSummary runHeadless(const ViewerOptions& options, render::GlContext& co
   loop.process(std::move(session.first));
   for (;;) {
     loop.updateCalibration();
+    loop.updateMapping();
     canvas.bind();
     glClearColor(0.1f, 0.1f, 0.1f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
@@ -592,6 +712,25 @@ ViewerRunSummary runHeadless(const ViewerOptions& options, render::GlContext& co
       summary.calibrationFile = options.calibrationOut;
     }
   }
+  if (loop.mapping) {
+    const MapState& m = state.map;
+    const std::vector<RigidPose> poses = loop.mapping->capturePoses();
+    for (std::size_t i = 0; i < m.captures.size() && i < poses.size(); ++i)
+      summary.captures.push_back({m.captures[i].frameIndex, m.captures[i].timestamp, poses[i],
+                                  m.captures[i].poseFrom, m.captures[i].fiducialRmsPx});
+    summary.mapReferences = m.mapReferences;
+    summary.mapPoints = m.mapPoints;
+    summary.mapMessage = m.message;
+    if (!options.mapOut.empty()) {
+      if (!loop.mapping->save(options.mapOut, state.map)) throw Error(state.map.message);
+      summary.mapFolder = options.mapOut;
+    }
+  }
+  if (loop.trajectory) {
+    loop.trajectory->save(options.trajectory);
+    summary.trajectoryFile = options.trajectory;
+  }
+  summary.trackedFrames = loop.trackedFrames;
   summary.framesProcessed = loop.processed;
   loop.summariseOverlayError(summary);
   summary.seconds = std::chrono::duration<double>(Clock::now() - start).count();
@@ -611,6 +750,7 @@ ViewerRunSummary runWindow(const ViewerOptions& options, render::GlfwWindowConte
   ImGuiSession imgui(window.window());
   const cv::Size frameSize = session.first.image.size();
   startCalibration(options, loop, frameSize);
+  startMapping(options, loop);
   if (!options.record.empty()) loop.startRecording(options.record, frameSize);
   if (!options.record.empty()) state.record.path = options.record.string();
   glfwShowWindow(window.window());
@@ -683,6 +823,7 @@ ViewerRunSummary runWindow(const ViewerOptions& options, render::GlfwWindowConte
     }
     newFrame = false;
     loop.updateCalibration();
+    loop.updateMapping();
 
     // The UI.
     imgui.newFrame();
@@ -692,7 +833,8 @@ ViewerRunSummary runWindow(const ViewerOptions& options, render::GlfwWindowConte
     const cv::Size fb = window.framebufferSize();
     std::optional<PanelLayout> layout;
     try {
-      layout = panelLayout(windowSize, state.calibration.active, state.references.active);
+      layout = panelLayout(windowSize, state.calibration.active || state.map.active,
+                           state.references.active);
     } catch (const Error&) {
       layout.reset();  // window too small for the columns: video only
     }

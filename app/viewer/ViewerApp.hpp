@@ -8,6 +8,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "app/sources/FrameSourceFactory.hpp"
 #include "app/viewer/FrameTracker.hpp"
@@ -42,6 +43,15 @@ struct ViewerOptions {
   std::string calibrateBoard;
   int calibrateEvery = 0;  // auto-capture every N frames; 0: off in the window, 1 headless
   std::filesystem::path calibrationOut;
+  // Building a reference map live (`--marker DICT:ID:SIZE` or `--board BOARD`: the world
+  // frame): shows the Map panel. Headless, `captureAt` (frame indices) are captured, the map is
+  // built from them before the input is tracked from its first frame on the new map, and written
+  // to mapOut (an error when any step fails).
+  std::string mapMarker, mapBoard;
+  std::vector<int> captureAt;
+  std::filesystem::path mapOut;
+  // Headless: the tracked poses as a TUM trajectory (camera in world), written atomically.
+  std::filesystem::path trajectory;
   FrameSourceOptions source;
   // Headless soak report (`--report-every N`): resident memory and frame rate every N frames,
   // and the growth / rate ratio after the first soakWarmup frames. 0: off.
@@ -74,6 +84,22 @@ struct ViewerRunSummary {
   std::string calibrationMessage;
   std::filesystem::path calibrationFile;  // the camera written (calibrationOut), else empty
   std::optional<SoakSummary> soak;        // with reportEvery
+  // Live mapping (with mapMarker / mapBoard): the captured references (frame index, the
+  // world->camera pose from the fiducial or tracking, its corner RMS; -1 when tracked), the map
+  // built (references, points) and the files written.
+  struct Capture {
+    int frameIndex = -1;
+    double timestamp = 0.0;
+    RigidPose worldToCamera;
+    std::string poseFrom;
+    double fiducialRmsPx = -1.0;
+  };
+  std::vector<Capture> captures;
+  int mapReferences = 0;
+  std::size_t mapPoints = 0;
+  std::string mapMessage;
+  std::filesystem::path mapFolder, trajectoryFile;  // written, else empty
+  int trackedFrames = 0;                            // frames with a pose
   // The overlay error of the drawn cube over the processed frames (the Stats panel's "pred" and
   // "true" curves): the mean predicted from the pose covariance over the frames with a
   // prediction, and the mean true one over the frames with ground truth (--gt, sim:).

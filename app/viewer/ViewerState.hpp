@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "app/viewer/OverlayPanel.hpp"
 #include "app/viewer/ReferencesPanel.hpp"
@@ -61,6 +62,48 @@ struct CalibrationState {
   std::string message;  // last action's result or error
 };
 
+// A reference captured in the Map panel (LiveMapping).
+struct MapCapture {
+  int frameIndex = -1;
+  double timestamp = 0.0;
+  std::string poseFrom;         // "marker", "board" or "tracking"
+  double fiducialRmsPx = -1.0;  // the marker's / board's corner reprojection RMS; -1: tracked
+  bool inMap = false;           // built into the map, or added to it
+  std::string note;             // why Add to map left it out
+  unsigned int thumbnail = 0;   // GL texture id (0: none)
+};
+
+// Two captures: how far apart, and a warning when they are too close or turned too far to
+// triangulate (the preparation's min_baseline_m and max_pair_view_angle_deg).
+struct MapCapturePair {
+  int a = -1, b = -1;
+  double distanceMetres = 0.0, angleDeg = 0.0;
+  std::string warning;  // empty: fine
+};
+
+// The Map panel (`view --marker SPEC` or `--board SPEC`: build a reference map live).
+struct MapState {
+  bool active = false;
+  std::string fiducial;  // what fixes the world frame ("marker DICT_6X6_250:23:0.2")
+  // Edited.
+  std::string savePath = "map";
+  bool captureRequested = false, buildRequested = false, addRequested = false;
+  bool saveRequested = false, clearRequested = false;
+  // Shown.
+  std::vector<MapCapture> captures;
+  std::vector<MapCapturePair> pairs;
+  cv::Size thumbnailSize{0, 0};
+  bool working = false;  // building or adding on the worker thread
+  std::string workLabel;
+  float progress = 0.0f;     // of the work, 0..1
+  std::string progressText;  // on the bar: steps done and seconds so far
+  int mapReferences = 0;     // 0: no map yet
+  std::size_t mapPoints = 0;
+  bool tracking = false;  // the live tracker runs on this map
+  std::string message;    // last action's result or error
+  bool messageIsError = false;
+};
+
 struct ViewerState {
   SourceState source;
   ViewerSettings settings;
@@ -75,6 +118,7 @@ struct ViewerState {
   RecordState record;
   CalibrationState calibration;
   ReferencesState references;
+  MapState map;
 };
 
 }  // namespace reftrack::app

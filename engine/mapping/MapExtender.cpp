@@ -246,6 +246,18 @@ std::string MapExtender::addReference(const cv::Mat& frame, int frameIndex, cons
   return {};
 }
 
+std::string MapExtender::add(const cv::Mat& frame, int frameIndex, const RigidPose& worldToCamera) {
+  if (frame.empty() || frame.size() != map_.camera.imageSize())
+    throw Error("the frame to add is " + std::to_string(frame.cols) + "x" +
+                std::to_string(frame.rows) + " but the map's camera is for " +
+                std::to_string(map_.camera.imageSize().width) + "x" +
+                std::to_string(map_.camera.imageSize().height) + " images");
+  if (map_.size() >= params_.extension.maxReferences)
+    return "the map already holds " + std::to_string(map_.size()) +
+           " references (extension.max_references)";
+  return addReference(frame, frameIndex, worldToCamera, coverage(worldToCamera));
+}
+
 BundleAdjustmentReport MapExtender::finish() { return adjuster_.adjust(map_); }
 
 }  // namespace reftrack

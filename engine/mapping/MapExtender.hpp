@@ -70,6 +70,11 @@ class MapExtender {
 
   // One video frame (BGR or grey, the map's image size).
   ExtensionFrame process(const cv::Mat& frame, int frameIndex);
+  // Adds `frame` (the map's image size) as a new reference at `worldToCamera` now, whether or not
+  // the coverage test asks for it (the viewer's "Add to map"): the same matching and bundle
+  // adjustment as process() (anchored references fixed: the world frame stays); the tracker
+  // carries on from it. Returns an empty string, or why it was not added (the map unchanged).
+  std::string add(const cv::Mat& frame, int frameIndex, const RigidPose& worldToCamera);
   // The closing bundle adjustment over every reference; returns its report.
   BundleAdjustmentReport finish();
 

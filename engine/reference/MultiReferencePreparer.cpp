@@ -82,14 +82,29 @@ MultiPreparation MultiReferencePreparer::prepare(const std::vector<ReferenceImag
                                                  const PairProgress& progress) const {
   checkImages(images);
   const MarkerPoseEstimator estimator(marker, camera_, params_.marker);
-  MultiPreparationReport report;
-  std::vector<RigidPose> poses;
+  std::vector<MeasuredPose> poses;
   for (const ReferenceImage& r : images) {
     const MarkerPose pose = estimator.estimate(r.image, r.name);
-    poses.push_back(pose.worldToCamera);
-    report.markerRmsPx.push_back(pose.reprojectionRmsPx);
+    poses.push_back({pose.worldToCamera, pose.reprojectionRmsPx});
   }
-  return build(images, poses, "marker " + marker.toString(), report, progress, false);
+  return prepare(images, poses, "marker " + marker.toString(), progress);
+}
+
+MultiPreparation MultiReferencePreparer::prepare(const std::vector<ReferenceImage>& images,
+                                                 const std::vector<MeasuredPose>& measured,
+                                                 const std::string& poseSource,
+                                                 const PairProgress& progress) const {
+  checkImages(images);
+  if (measured.size() != images.size())
+    throw Error(std::to_string(measured.size()) + " poses (" + poseSource + ") for " +
+                std::to_string(images.size()) + " reference images: one per image is needed");
+  MultiPreparationReport report;
+  std::vector<RigidPose> poses;
+  for (const MeasuredPose& m : measured) {
+    poses.push_back(m.worldToCamera);
+    report.markerRmsPx.push_back(m.reprojectionRmsPx);
+  }
+  return build(images, poses, poseSource, report, progress, false);
 }
 
 MultiPreparation MultiReferencePreparer::prepare(const std::vector<ReferenceImage>& images,

@@ -46,6 +46,13 @@ struct MultiPreparationReport {
   std::optional<ReferencePoseRefinement> poseRefinement;  // when params.refines()
 };
 
+// A reference's pose measured in its own image from a fiducial in view (a marker, a calibration
+// board): refined from the matches like a marker's (params.refinePoses).
+struct MeasuredPose {
+  RigidPose worldToCamera;
+  double reprojectionRmsPx = 0.0;  // of the fiducial's corners
+};
+
 struct MultiPreparation {
   MultiReferenceMap map;
   MultiPreparationReport report;
@@ -61,6 +68,11 @@ class MultiReferencePreparer {
 
   // Poses from `marker`, detected in every image.
   MultiPreparation prepare(const std::vector<ReferenceImage>& images, const MarkerSpec& marker,
+                           const PairProgress& progress = {}) const;
+  // Poses measured in the images (one per image, e.g. captured live in the viewer from a marker
+  // or board); poseSource is recorded in the map. The marker overload ends here.
+  MultiPreparation prepare(const std::vector<ReferenceImage>& images,
+                           const std::vector<MeasuredPose>& poses, const std::string& poseSource,
                            const PairProgress& progress = {}) const;
   // Known world->camera poses, one per image; poseSource is recorded in the map.
   MultiPreparation prepare(const std::vector<ReferenceImage>& images,
