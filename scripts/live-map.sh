@@ -35,6 +35,9 @@ echo "== desk clip: world frame from its chessboard 9x6 (4 cm), references at fr
 echo "-- eval --align se3 (Umeyama on the camera centres)"
 "$reftrack" eval --gt "$desk/groundtruth.txt" --est "$out/desk-trajectory.txt" \
   --camera "$desk/camera.yml" --align se3 --no-plots | tee "$out/desk-eval-se3.txt"
+echo "-- eval --align se3-views (Umeyama on the centres and three points of each camera's view)"
+"$reftrack" eval --gt "$desk/groundtruth.txt" --est "$out/desk-trajectory.txt" \
+  --camera "$desk/camera.yml" --align se3-views --no-plots | tee "$out/desk-eval-se3-views.txt"
 # The exact relation of the two world frames (README: the clip's world is the board's first inner
 # corner with z toward the camera and the corners at y <= 0): world_gt = F world_board,
 # F = diag(1, -1, -1), a half turn about x (quaternion x = 1).
@@ -57,8 +60,8 @@ echo "-- eval in the clip's world frame by its exact relation to the board's (no
   --camera "$desk/camera.yml" --out "$out/desk-truth-map" >/dev/null
 "$reftrack" track --input "$desk/frames" --map "$out/desk-truth-map" \
   --trajectory "$out/desk-truth-trajectory.txt" >/dev/null
-echo "-- baseline: references posed by the true poses, eval --align se3 / no alignment"
-for align in se3 none; do
+echo "-- baseline: references posed by the true poses, eval --align se3 / se3-views / none"
+for align in se3 se3-views none; do
   "$reftrack" eval --gt "$desk/groundtruth.txt" --est "$out/desk-truth-trajectory.txt" \
     --camera "$desk/camera.yml" --align "$align" --no-plots | grep -E "tracked|^cube"
 done

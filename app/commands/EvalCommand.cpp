@@ -23,10 +23,14 @@ struct EvalOptions {
 };
 
 std::string alignmentText(const TrajectoryEvaluation& ev, const EvalOptions& o) {
-  if (!ev.aligned) return "none (the default; --align se3|sim3 aligns the estimate first)";
+  if (!ev.aligned)
+    return "none (the default; --align se3|sim3|se3-views aligns the estimate first)";
   char scale[64];
   std::snprintf(scale, sizeof scale, ", scale %.6g", ev.alignmentScale);
-  return o.align + " (Umeyama least squares on the camera centres" +
+  return o.align +
+         (o.params.alignment == TrajectoryAlignment::Se3Views
+              ? " (Umeyama least squares on the camera centres and three points of each view"
+              : " (Umeyama least squares on the camera centres") +
          (o.params.alignment == TrajectoryAlignment::Sim3 ? std::string(scale) : "") + ")";
 }
 
@@ -201,9 +205,10 @@ CommandRegistration registerEvalCommand(CLI::App& parent) {
       ->check(CLI::Range(0.0, 1e6));
   sub->add_option("--align", options->align,
                   "align the estimate to the ground truth first (Umeyama on the camera centres): "
-                  "none, se3 (rigid) or sim3 (rigid + scale)")
+                  "none, se3 (rigid) or sim3 (rigid + scale); se3-views: rigid, on the centres "
+                  "and three points of each camera's view (orientations count too)")
       ->capture_default_str()
-      ->check(CLI::IsMember({"none", "se3", "sim3"}));
+      ->check(CLI::IsMember({"none", "se3", "sim3", "se3-views"}));
   sub->add_flag("--json", options->json, "print one JSON object instead of text");
   sub->add_option("--plots", options->plotDir,
                   "folder for EST.error.png and EST.topview.png (default: beside --est)");

@@ -21,6 +21,8 @@ std::string toString(TrajectoryAlignment alignment) {
       return "se3";
     case TrajectoryAlignment::Sim3:
       return "sim3";
+    case TrajectoryAlignment::Se3Views:
+      return "se3-views";
     case TrajectoryAlignment::None:
       break;
   }
@@ -29,9 +31,10 @@ std::string toString(TrajectoryAlignment alignment) {
 
 TrajectoryAlignment parseTrajectoryAlignment(const std::string& text) {
   for (TrajectoryAlignment a :
-       {TrajectoryAlignment::None, TrajectoryAlignment::Se3, TrajectoryAlignment::Sim3})
+       {TrajectoryAlignment::None, TrajectoryAlignment::Se3, TrajectoryAlignment::Sim3,
+        TrajectoryAlignment::Se3Views})
     if (text == toString(a)) return a;
-  throw Error("alignment '" + text + "' is not one of none, se3, sim3");
+  throw Error("alignment '" + text + "' is not one of none, se3, sim3, se3-views");
 }
 
 void EvaluationParams::check() const {
@@ -92,10 +95,30 @@ TrajectoryEvaluation evaluateTrajectory(const TumTrajectory& groundTruth,
   if (params.alignment != TrajectoryAlignment::None) {
     if (pairs.size() < 3)
       throw Error(toString(params.alignment) + " alignment needs at least 3 associated poses");
-    Eigen::Matrix3Xd src(3, pairs.size()), dst(3, pairs.size());
+    const bool views = params.alignment == TrajectoryAlignment::Se3Views;
+    // Per frame: the centre, and with views three points of the view at the scene's depth.
+    std::vector<Eigen::Vector3d> inCamera = {Eigen::Vector3d::Zero()};
+    if (views) {
+      std::vector<double> depth;
+      for (const AssociatedPair& p : pairs)
+        depth.push_back(groundTruth.poses[p.groundTruth].worldToCamera.cameraCentre().norm());
+      std::nth_element(depth.begin(), depth.begin() + static_cast<long>(depth.size() / 2),
+                       depth.end());
+      const double d = std::max(1e-3, depth[depth.size() / 2]);
+      inCamera = {Eigen::Vector3d(0, 0, d), Eigen::Vector3d(0.5 * d, 0, d),
+                  Eigen::Vector3d(0, 0.5 * d, d), Eigen::Vector3d::Zero()};
+    }
+    const long n = static_cast<long>(pairs.size() * inCamera.size());
+    Eigen::Matrix3Xd src(3, n), dst(3, n);
+    long k = 0;
     for (std::size_t i = 0; i < pairs.size(); ++i) {
-      src.col(i) = estimate.poses[pairs[i].estimate].worldToCamera.cameraCentre();
-      dst.col(i) = groundTruth.poses[pairs[i].groundTruth].worldToCamera.cameraCentre();
+      const RigidPose& e = estimate.poses[pairs[i].estimate].worldToCamera;
+      const RigidPose& g = groundTruth.poses[pairs[i].groundTruth].worldToCamera;
+      for (const Eigen::Vector3d& q : inCamera) {
+        src.col(k) = e.rotation().transpose() * (q - e.translation());
+        dst.col(k) = g.rotation().transpose() * (q - g.translation());
+        ++k;
+      }
     }
     const bool withScale = params.alignment == TrajectoryAlignment::Sim3;
     const Eigen::Matrix4d T = Eigen::umeyama(src, dst, withScale);

@@ -25,8 +25,14 @@
 
 namespace reftrack {
 
-enum class TrajectoryAlignment { None, Se3, Sim3 };
-// "none" | "se3" | "sim3"; parse throws reftrack::Error naming the accepted values.
+// Se3Views: the rigid transform that best maps where the estimated cameras look onto where the
+// true ones do — per frame, the camera centre and three points of its view (on the optical axis
+// and beside it, at the median distance of the true centres from the world origin), Umeyama over
+// them all — so the orientations count as well as the centres. On a short hand-held clip the
+// centres alone leave the world's rotation poorly determined: the desk clip's map built from its
+// own true poses scores 0.405 px unaligned and 1.232 px after se3.
+enum class TrajectoryAlignment { None, Se3, Sim3, Se3Views };
+// "none" | "se3" | "sim3" | "se3-views"; parse throws reftrack::Error naming the accepted values.
 std::string toString(TrajectoryAlignment alignment);
 TrajectoryAlignment parseTrajectoryAlignment(const std::string& text);
 
