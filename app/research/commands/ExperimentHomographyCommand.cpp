@@ -524,7 +524,9 @@ CommandRegistration registerExperimentHomographyCommand(CLI::App& parent) {
             const TrackerParams params =
                 args->params.empty() ? TrackerParams{} : TrackerParams::load(args->params);
             params.check();
-            std::filesystem::create_directories(args->out);
+            // Only the experiments that write plots make the plot folder.
+            if (args->experiment != "pairs" && args->experiment != "verify")
+              std::filesystem::create_directories(args->out);
             const auto context = render::createHeadlessContext();
             if (args->experiment == "cold") {
               runCold(*args, size, params);
