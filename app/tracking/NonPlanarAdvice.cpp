@@ -4,9 +4,8 @@ namespace reftrack::app {
 
 void NonPlanarAdvice::add(const HomographyTrackResult& result) {
   recent_.push_back({!result.tracked,
-                     !result.tracked &&
-                         result.failure.find("refused by the registration check") !=
-                             std::string::npos});
+                     !result.tracked && result.failure.find("refused by the registration check") !=
+                                            std::string::npos});
   if (static_cast<int>(recent_.size()) > kWindow) recent_.pop_front();
   if (advice()) everShown_ = true;
 }

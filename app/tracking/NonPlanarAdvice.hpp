@@ -15,9 +15,9 @@ namespace reftrack::app {
 
 class NonPlanarAdvice {
  public:
-  static constexpr int kWindow = 30;        // recent frames looked at
-  static constexpr int kMinLost = 15;       // lost among them
-  static constexpr int kMinRefused = 5;     // of those, refused by the registration check
+  static constexpr int kWindow = 30;     // recent frames looked at
+  static constexpr int kMinLost = 15;    // lost among them
+  static constexpr int kMinRefused = 5;  // of those, refused by the registration check
 
   void add(const HomographyTrackResult& result);
   static const char* message();

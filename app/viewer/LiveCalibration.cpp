@@ -5,29 +5,10 @@
 #include <cstdio>
 #include <utility>
 
+#include "app/viewer/BackgroundWork.hpp"
 #include "engine/core/Error.hpp"
 
 namespace reftrack::app {
-
-namespace {
-
-template <typename T>
-bool ready(const std::future<T>& f) {
-  return f.valid() && f.wait_for(std::chrono::seconds(0)) == std::future_status::ready;
-}
-
-// The error text of any exception a worker may have thrown.
-std::string errorText(const std::exception_ptr& error) {
-  try {
-    std::rethrow_exception(error);
-  } catch (const cv::Exception& e) {
-    return std::string("OpenCV: ") + e.err;
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-}
-
-}  // namespace
 
 LiveCalibration::LiveCalibration(cv::Size imageSize, bool background, CalibrationState& state)
     : background_(background), session_(CalibrationBoard::parse(state.boardText), imageSize) {

@@ -7,6 +7,7 @@
 #include <opencv2/imgproc.hpp>
 #include <utility>
 
+#include "app/viewer/BackgroundWork.hpp"
 #include "engine/core/Error.hpp"
 #include "engine/reference/MultiReferencePreparer.hpp"
 
@@ -17,21 +18,6 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
-
-template <typename T>
-bool ready(const std::future<T>& f) {
-  return f.valid() && f.wait_for(std::chrono::seconds(0)) == std::future_status::ready;
-}
-
-std::string errorText(const std::exception_ptr& error) {
-  try {
-    std::rethrow_exception(error);
-  } catch (const cv::Exception& e) {
-    return std::string("OpenCV: ") + e.err;
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-}
 
 double viewAngleDeg(const RigidPose& a, const RigidPose& b) {
   const Eigen::Vector3d za = a.rotation().row(2).transpose(), zb = b.rotation().row(2).transpose();

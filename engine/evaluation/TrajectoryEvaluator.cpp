@@ -30,9 +30,8 @@ std::string toString(TrajectoryAlignment alignment) {
 }
 
 TrajectoryAlignment parseTrajectoryAlignment(const std::string& text) {
-  for (TrajectoryAlignment a :
-       {TrajectoryAlignment::None, TrajectoryAlignment::Se3, TrajectoryAlignment::Sim3,
-        TrajectoryAlignment::Se3Views})
+  for (TrajectoryAlignment a : {TrajectoryAlignment::None, TrajectoryAlignment::Se3,
+                                TrajectoryAlignment::Sim3, TrajectoryAlignment::Se3Views})
     if (text == toString(a)) return a;
   throw Error("alignment '" + text + "' is not one of none, se3, sim3, se3-views");
 }

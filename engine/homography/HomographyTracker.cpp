@@ -504,8 +504,9 @@ HomographyTracker::Attempt HomographyTracker::alignedAttempt(const ImagePyramid&
     if (dense.tracked) a = std::move(dense);
   }
   if (!a.tracked && aligned.success &&
-      aligned.inliers >= std::max(params_.ransac.minInliers,
-                                  static_cast<int>(params_.ransac.minInlierRatio * aligned.points))) {
+      aligned.inliers >=
+          std::max(params_.ransac.minInliers,
+                   static_cast<int>(params_.ransac.minInlierRatio * aligned.points))) {
     // The corners fail where the frame has lost them (a strong blur: Oxford trees 1->6 keeps 44
     // of 284 reference corners) while the whole-image alignment still holds: its H stands, to
     // be confirmed by the registration check like any cold one.

@@ -48,7 +48,7 @@ struct RegistrationCheck {
                           // (full-resolution frame pixels): how far off H is there
   int frameLevel = 0, referenceLevel = 0;  // the pyramid levels compared
   bool confirmedTooFew = false;  // failed for too few confirming points (not spread or offset)
-  std::string failure;                     // why it did not pass
+  std::string failure;           // why it did not pass
 };
 
 class RegistrationVerifier {

@@ -110,7 +110,9 @@ double pairError(const PairOutcome& o, const std::string& metric) {
   return metric == "overlap" ? o.overlapErrorPx : o.cornerErrorPx;
 }
 
-std::string sizeName(cv::Size s) { return std::to_string(s.width) + "x" + std::to_string(s.height); }
+std::string sizeName(cv::Size s) {
+  return std::to_string(s.width) + "x" + std::to_string(s.height);
+}
 
 void runPairs(const ExperimentArgs& a, const TrackerParams& params) {
   PairsOptions o;
@@ -140,8 +142,8 @@ void runPairs(const ExperimentArgs& a, const TrackerParams& params) {
       const RefinedTruth& t = r.truthChecks[i];
       if (t.converged)
         std::printf("  %-10s %-6s moved %6.2f px  correlation %.3f%s\n",
-                    r.pairs[i].sequence.c_str(), r.pairs[i].label.c_str(), t.movedPx,
-                    t.correlation, t.movedPx > 1.0 ? "  <- the given H is off" : "");
+                    r.pairs[i].sequence.c_str(), r.pairs[i].label.c_str(), t.movedPx, t.correlation,
+                    t.movedPx > 1.0 ? "  <- the given H is off" : "");
       else
         std::printf("  %-10s %-6s ECC did not converge: the given H kept\n",
                     r.pairs[i].sequence.c_str(), r.pairs[i].label.c_str());
@@ -222,8 +224,10 @@ void runPairs(const ExperimentArgs& a, const TrackerParams& params) {
     return !p.real && !isHard;
   });
   // Where reftrack's time goes: per stage, the median over the real pairs of each frame size.
-  std::printf("reftrack's stages, ms per cold registration (median over the pairs of a frame size, "
-              "wall clock)\n%-12s", "frame size");
+  std::printf(
+      "reftrack's stages, ms per cold registration (median over the pairs of a frame size, "
+      "wall clock)\n%-12s",
+      "frame size");
   const std::vector<std::pair<std::string, double>>& stagesOf0 = r.methods[0].outcomes[0].stageMs;
   for (const auto& [name, ms] : stagesOf0) std::printf(" %-10s", name.c_str());
   std::printf("\n");
@@ -266,7 +270,7 @@ void runVerify(const ExperimentArgs& a, const TrackerParams& params) {
   std::vector<HomographyPair> pairs = buildHomographyPairs(a.data, a.noise, a.seed, a.synthetic);
   if (a.synthetic)
     for (HomographyPair& p : buildHardHomographyPairs(a.data, a.noise, a.seed))
-    pairs.push_back(std::move(p));
+      pairs.push_back(std::move(p));
   if (!a.onlySets.empty())
     std::erase_if(pairs, [&](const HomographyPair& p) {
       return std::find(a.onlySets.begin(), a.onlySets.end(), p.sequence) == a.onlySets.end();
@@ -509,9 +513,11 @@ CommandRegistration registerExperimentHomographyCommand(CLI::App& parent) {
       "pairs: every sequence folder under --data (itself or up to three levels down: img1 and\n"
       "img2..img9 as .png/.ppm/.pgm/.jpg, H1toNp or H1toNp.xml, x_N ~ H1toNp x_1): its real pairs\n"
       "img1 -> imgN (any sizes), registered cold by reftrack, reftrack without keypoints, and\n"
-      "OpenCV SIFT, AKAZE and ORB + ratio test + findHomography RANSAC (--no-peers: reftrack only).\n"
+      "OpenCV SIFT, AKAZE and ORB + ratio test + findHomography RANSAC (--no-peers: reftrack "
+      "only).\n"
       "Error (--metric): corners = mean at img1's four corners, estimate vs truth; overlap = mean\n"
-      "over a 32x24 grid of img1's points that the frame sees. Registered: error <= --pairs-error;\n"
+      "over a 32x24 grid of img1's points that the frame sees. Registered: error <= "
+      "--pairs-error;\n"
       "wrong: returned with an error > --pairs-wrong; off: in between. --synthetic adds views\n"
       "synthesised from img1 (tilt 20-60 deg; zoom 0.5-3.5 with rotation) and the simulated hard\n"
       "sets (graf-sim, wall-sim, boat-sim, bark-sim, tiles-sim; they need ubc, bikes and trees\n"

@@ -67,8 +67,8 @@ cv::Matx33d readHomography(const std::filesystem::path& file) {
   return out;
 }
 
-constexpr const char* kImageExtensions[] = {".png", ".ppm", ".pgm", ".jpg", ".jpeg", ".bmp",
-                                            ".tif", ".tiff"};
+constexpr const char* kImageExtensions[] = {".png",  ".ppm", ".pgm", ".jpg",
+                                            ".jpeg", ".bmp", ".tif", ".tiff"};
 
 // dir/<stem><ext> for the first image extension that exists; empty when none does.
 std::filesystem::path findImage(const std::filesystem::path& dir, const std::string& stem) {
@@ -137,8 +137,9 @@ std::vector<HomographyPair> buildHomographyPairs(const std::filesystem::path& da
       const auto img = findImage(dir, "img" + std::to_string(k));
       const auto hf = findHomographyFile(dir, k);
       if (img.empty() || hf.empty()) continue;
-      HomographyPair p{name,           kind,          "1->" + std::to_string(k), reference,
-                       readGrey(img), readHomography(hf), true};
+      HomographyPair p{name,      kind,          "1->" + std::to_string(k),
+                       reference, readGrey(img), readHomography(hf),
+                       true};
       out.push_back(std::move(p));
     }
     if (!syntheticViews) continue;
@@ -273,15 +274,15 @@ PairsResult runPairsExperiment(const PairsOptions& options) {
             H = r.H;
           }
         });
-        o.wallMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() -
-                                                             wall0)
-                       .count();
+        o.wallMs =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - wall0)
+                .count();
         constexpr double nan = std::numeric_limits<double>::quiet_NaN();
         o.cornerErrorPx = o.found ? referenceCornerError(H, p.truth, p.reference.size()) : nan;
-        o.overlapErrorPx = o.found ? meanTransferDeviation(H, p.truth,
-                                                           annotationGrid(p.reference.size(), 32, 24),
-                                                           p.frame.size())
-                                   : nan;
+        o.overlapErrorPx =
+            o.found ? meanTransferDeviation(H, p.truth, annotationGrid(p.reference.size(), 32, 24),
+                                            p.frame.size())
+                    : nan;
         out.methods[m].outcomes.push_back(o);
         progress.advance();
       }

@@ -20,8 +20,8 @@ RefinedTruth refineTruthByEcc(const cv::Mat& reference, const cv::Mat& frame,
   try {
     out.correlation = cv::findTransformECC(
         reference, frame, warp, cv::MOTION_HOMOGRAPHY,
-        cv::TermCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 300, 1e-7),
-        cv::noArray(), 5);
+        cv::TermCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 300, 1e-7), cv::noArray(),
+        5);
   } catch (const cv::Exception&) {
     return out;  // ECC diverged or the images do not overlap
   }

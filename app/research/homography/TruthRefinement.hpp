@@ -11,8 +11,8 @@ namespace reftrack::app {
 struct RefinedTruth {
   bool converged = false;
   cv::Matx33d H = cv::Matx33d::eye();  // reference -> frame; the given H when !converged
-  double movedPx = 0.0;      // mean distance at the reference's corners from the given H
-  double correlation = 0.0;  // ECC's final correlation coefficient (1: identical)
+  double movedPx = 0.0;                // mean distance at the reference's corners from the given H
+  double correlation = 0.0;            // ECC's final correlation coefficient (1: identical)
 };
 
 // reference, frame: 8-bit grey; givenH: reference -> frame. Never throws on a pair ECC cannot

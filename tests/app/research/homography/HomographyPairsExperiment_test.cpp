@@ -177,8 +177,7 @@ TEST(HomographyPairsExperiment, RegistersTheRealOxfordPairsWhereTheirHomographie
   int within3 = 0;
   for (size_t i = 0; i < r.pairs.size(); ++i) {
     const PairOutcome& own = r.methods[0].outcomes[i];
-    ASSERT_TRUE(own.found) << r.pairs[i].sequence << " " << r.pairs[i].label << ": "
-                           << own.failure;
+    ASSERT_TRUE(own.found) << r.pairs[i].sequence << " " << r.pairs[i].label << ": " << own.failure;
     EXPECT_LT(own.cornerErrorPx, 12.0) << r.pairs[i].sequence << " " << r.pairs[i].label;
     within3 += own.cornerErrorPx <= 3.0 ? 1 : 0;
   }
