@@ -50,6 +50,20 @@ void PoseParams::fields(Self& p, const Field& field) {
       .help(
           "Weigh points by their past residuals, shrunk toward the average by this many "
           "observations; 0: off");
+  field("group_noise_frames", p.groupNoiseFrames, Range{0.0, 1e6})
+      .help(
+          "Weigh corner, keypoint and epipolar terms by their kinds' residuals over about this "
+          "many frames; 0: off");
+  field("outlier_gate_sigmas", p.outlierGateSigmas, Range{0.0, 100.0})
+      .help(
+          "Re-gate the PnP inliers at this many robust SDs of their residuals, refitting; 0: off "
+          "(the wide gate only)");
+  field("min_outlier_gate_px", p.minOutlierGatePx, Range{0.0, 1000.0})
+      .help("The re-gated outlier gate is never tighter than this (pixels at 320x240, scaled)");
+  field("reject_sigmas", p.rejectSigmas, Range{0.0, 1000.0})
+      .help(
+          "Drop terms beyond this many robust SDs of their kind at the estimate and estimate "
+          "again; 0: off");
   field("verify_min_points", p.verifyMinPoints, Range{0, 100000})
       .help(
           "A pose is reported only when this many distinctive map points confirm it by "

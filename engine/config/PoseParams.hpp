@@ -54,6 +54,26 @@ struct PoseParams : ParamSection<PoseParams> {
   // the real desk clip and the simulator (README "Defaults decided on real footage"): cube error
   // mean over four reference pairs 0.386 -> 0.294 px, simulator webcam preset 0.129 -> 0.105 px.
   double reliabilityPriorObservations = 2.0;
+  // Learned noise of each kind of measurement (MeasurementGroupNoise): the corner points'
+  // three-view terms, the keypoint points' and the epipolar terms to A and to B are weighted
+  // against each other by what their residuals at the accepted poses have shown, averaged over
+  // about this many tracked frames; 0 turns it off (the corner-variance model's weights alone).
+  // The corner model is a sharp, global-shutter camera's (Fig. 7: ~0.1 px); on other cameras each
+  // kind is off by its own factor (ViSP's desk camera, true poses: epipolar terms 20-200 times
+  // their modelled variance, corner points 5-40, keypoint points 1-5). Measured on every real clip
+  // with true poses (app/research/README.md, "One set of defaults for every camera").
+  double groupNoiseFrames = 10.0;
+  // Outlier gate of the 3D-2D pairs (stage 7): after PnP-RANSAC (whose threshold is the tracker's
+  // wide gate), the pairs are gated again at this many times their robust reprojection SD (median
+  // residual), at least min_outlier_gate_px (pixels at 320x240, scaled), at most the wide gate,
+  // and the linear pose refitted, twice; the epipolar terms are gated the same. A few wrong
+  // matches within the wide gate (ViSP clip: 18-40 px off the true pose, 2-9 px off the estimate)
+  // otherwise pull the pose by a pixel or more. 0 turns it off.
+  double outlierGateSigmas = 3.0;
+  double minOutlierGatePx = 0.5;
+  // After the pose is estimated, a term whose whitened residual exceeds this many times its
+  // kind's robust SD (median) is dropped and the pose estimated again; 0 turns it off.
+  double rejectSigmas = 4.0;
   // Every pose is checked before it is reported, whatever produced it (PoseVerifier): at the
   // distinctive map points it projects into the frame, the reference windows warped by the pose
   // must correlate with the frame. It needs this many of them confirmed (0 turns the check off)

@@ -8,6 +8,16 @@ TemporalRegularizer::TemporalRegularizer(ArMotionModel model, PoseEstimatorKind 
 void TemporalRegularizer::reset() {
   history_.clear();
   omega_ = Matrix6d::Identity();
+  beforeLastStep_.reset();
+}
+
+std::optional<PoseEstimate> TemporalRegularizer::redoLastStep(
+    const RegularizedPoseEstimator& estimator, const PoseMeasurements& m,
+    const std::optional<Vector6d>& linearStart) {
+  if (!beforeLastStep_) return std::nullopt;
+  history_ = beforeLastStep_->first;
+  omega_ = beforeLastStep_->second;
+  return step(estimator, m, linearStart);
 }
 
 std::optional<Vector6d> TemporalRegularizer::predictNext() const {
@@ -18,6 +28,7 @@ std::optional<Vector6d> TemporalRegularizer::predictNext() const {
 std::optional<PoseEstimate> TemporalRegularizer::step(const RegularizedPoseEstimator& estimator,
                                                       const PoseMeasurements& m,
                                                       const std::optional<Vector6d>& linearStart) {
+  beforeLastStep_.emplace(history_, omega_);
   PoseEstimate e;
   if (history_.empty()) {
     if (!linearStart) return std::nullopt;

@@ -6,6 +6,7 @@
 // selected every frame is solved by Eq. 12 from the previous estimate (the paper's comparison).
 #include <deque>
 #include <optional>
+#include <utility>
 
 #include "engine/config/PoseParams.hpp"  // PoseEstimatorKind
 #include "engine/estimation/MotionModel.hpp"
@@ -22,6 +23,11 @@ class TemporalRegularizer {
   std::optional<PoseEstimate> step(const RegularizedPoseEstimator& estimator,
                                    const PoseMeasurements& m,
                                    const std::optional<Vector6d>& linearStart);
+  // The last step() again on other measurements (the same frame with outliers dropped), from the
+  // state before it; nullopt (and nothing changed) when there was no step since the last reset.
+  std::optional<PoseEstimate> redoLastStep(const RegularizedPoseEstimator& estimator,
+                                           const PoseMeasurements& m,
+                                           const std::optional<Vector6d>& linearStart);
   void reset();
   bool hasHistory() const { return !history_.empty(); }
   // Prediction for the next frame (for guided matching); nullopt without history.
@@ -37,6 +43,8 @@ class TemporalRegularizer {
   double alpha_;
   std::deque<Vector6d> history_;  // front = x_{k-1}
   Matrix6d omega_ = Matrix6d::Identity();
+  // The state before the last step (redoLastStep), valid until the next reset.
+  std::optional<std::pair<std::deque<Vector6d>, Matrix6d>> beforeLastStep_;
 };
 
 }  // namespace reftrack

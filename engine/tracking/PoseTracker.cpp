@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 #include <utility>
@@ -13,6 +14,7 @@
 #include "engine/core/Error.hpp"
 #include "engine/estimation/MotionModelFile.hpp"
 #include "engine/estimation/RegularizedPoseEstimator.hpp"
+#include "engine/estimation/RobustScale.hpp"
 #include "engine/estimation/RollingShutterEstimator.hpp"
 #include "engine/estimation/TemporalRegularizer.hpp"
 #include "engine/features/CornerDetector.hpp"
@@ -21,6 +23,7 @@
 #include "engine/matching/NarrowBaselineMatcher.hpp"
 #include "engine/matching/PatchAligner.hpp"
 #include "engine/tracking/KeypointMeasurer.hpp"
+#include "engine/tracking/MeasurementGroupNoise.hpp"
 #include "engine/tracking/MeasurementReliability.hpp"
 #include "engine/tracking/PoseSupport.hpp"
 #include "engine/tracking/PoseVerifier.hpp"
@@ -228,6 +231,11 @@ struct PoseTracker::Impl {
     double whitenedSquared;
   };
   std::vector<PendingObservation> pendingReliability;
+  // The noise of each kind of term on this camera (pose.group_noise_frames), learned like the
+  // reliability: a frame's residuals count once the next frame goes on tracking from it.
+  MeasurementGroupNoise groupNoise;
+  std::optional<MeasurementGroupNoise::FrameResiduals> pendingGroupResiduals;
+  double groupFactor(MeasurementGroup g) const { return groupNoise.varianceFactor(g); }
   std::size_t cornerSource(bool inB, int referenceCorner) const {
     return (inB ? refA.measured.size() : 0) + static_cast<std::size_t>(referenceCorner);
   }
@@ -401,6 +409,7 @@ struct PoseTracker::Impl {
   }
 
   void applyPoseParams() {
+    groupNoise.setFrames(params.pose.groupNoiseFrames);
     if (!params.pose.motionModelFile.empty()) {
       // A fitted model (`reftrack fit-motion`) replaces the AR order and Q of the parameters.
       motionModel = loadMotionModel(params.pose.motionModelFile).model;
@@ -500,6 +509,7 @@ struct PoseTracker::Impl {
     std::vector<std::size_t> threeViewMeasurement;      // per three-view term: its measurement
     std::vector<int> threeViewMapMatch;                 // per three-view term: its map match
     std::vector<int> epipolarCornerA, epipolarCornerB;  // per epipolar term: its reference corner
+    std::vector<std::size_t> epipolarMatchA, epipolarMatchB;  // ... and its match (m.toA, m.toB)
     int distinctive = 0;  // gated matches to distinctive reference corners
   };
   FrameCorners detectCorners(const cv::Mat& gray);
@@ -521,6 +531,13 @@ struct PoseTracker::Impl {
   void keepInliers(const FrameCorners& c, const FrameMatches& m, const Inliers& in,
                    PoseTrackingResult& r);
   void recordResiduals(const RigidPose& TAk, const Inliers& in);
+  // Each term's squared residual at TAk, whitened as weighted (every factor in): the three-view
+  // terms' 2-D norms, the epipolar terms' distance to the line (to A, to B).
+  struct TermResiduals {
+    std::vector<double> threeView, toA, toB;
+  };
+  TermResiduals whitenedResiduals(const RigidPose& TAk, const PoseMeasurements& pm) const;
+  int dropOutlierTerms(const RigidPose& TAk, Inliers& in) const;
   PoseTrackingResult process(const cv::Mat& frame);
 };
 
@@ -799,6 +816,37 @@ std::optional<PoseTracker::Impl::Inliers> PoseTracker::Impl::rejectOutliers(
     }
     cv::solvePnPRefineLM(o, im, Kcv, cv::noArray(), rvec, tvec);
   }
+  // The pairs gated again at their own robust scale (pose.outlier_gate_sigmas), the linear pose
+  // refitted to those within, twice: the wide gate lets in wrong matches a few pixels off that pull
+  // the refit by a pixel or more (the ViSP clip's frames 10, 28, 32: one or two matches 18-40 px
+  // off the true pose).
+  if (params.pose.outlierGateSigmas > 0) {
+    const double floorPx = params.pose.minOutlierGatePx * gate / limits.gatePx;
+    std::vector<cv::Point2d> back;
+    std::vector<double> residual, within;
+    for (int pass = 0; pass < 2; ++pass) {
+      cv::projectPoints(object, rvec, tvec, Kcv, cv::noArray(), back);
+      residual.clear();
+      within.clear();
+      for (std::size_t i = 0; i < back.size(); ++i) {
+        residual.push_back(cv::norm(back[i] - image[i]));
+        if (residual.back() <= gate) within.push_back(residual.back());
+      }
+      if (static_cast<int>(within.size()) < limits.minInliers) break;
+      const double tight = std::clamp(
+          params.pose.outlierGateSigmas * robustSd(within, ResidualDimension::Two), floorPx, gate);
+      std::vector<cv::Point3d> o;
+      std::vector<cv::Point2d> im;
+      for (std::size_t i = 0; i < residual.size(); ++i)
+        if (residual[i] <= tight) {
+          o.push_back(object[i]);
+          im.push_back(image[i]);
+        }
+      if (static_cast<int>(o.size()) < limits.minInliers) break;
+      cv::solvePnPRefineLM(o, im, Kcv, cv::noArray(), rvec, tvec);
+      gate = tight;
+    }
+  }
   Inliers in;
   in.xLin << tvec[0], tvec[1], tvec[2], rvec[0], rvec[1], rvec[2];
   const RigidPose TAkLin = RigidPose::fromVector6(in.xLin);
@@ -813,33 +861,37 @@ std::optional<PoseTracker::Impl::Inliers> PoseTracker::Impl::rejectOutliers(
   const auto sigmaOf = [&](float contrastK, float contrastRef) {
     return std::sqrt(varianceModel.variance(contrastK) + varianceModel.variance(contrastRef));
   };
-  const auto gateEpipolar =
-      [&](const std::vector<WideBaselineMatch>& ms, const std::vector<std::size_t>& measurement,
-          const PreparedReference& ref, const Eigen::Matrix3d& F, bool useEpipolar,
-          const std::vector<char>& distinctive, std::vector<char>& inlier,
-          std::vector<EpipolarMatch>& out, std::vector<int>& outCorner) {
-        const bool inB = &ref == &refB;
-        inlier.assign(ms.size(), 0);
-        for (std::size_t i = 0; i < ms.size(); ++i) {
-          const Eigen::Vector2d& pK = meas.undistorted[measurement[i]];
-          const auto rc = static_cast<std::size_t>(ms[i].referenceCorner);
-          if (maxEpipolarDistance(F, ref.measured[rc], pK) > gate) continue;
-          inlier[i] = 1;
-          in.distinctive += distinctive[rc] ? 1 : 0;
-          if (!useEpipolar) continue;
-          const double reliability =
-              cornerReliability.varianceFactor(cornerSource(inB, ms[i].referenceCorner));
-          out.push_back({ref.measured[rc], pK,
-                         sigmaOf(c.corners[static_cast<std::size_t>(ms[i].frameCorner)].contrast,
-                                 ref.contrast[rc]) *
-                             std::sqrt(reliability)});
-          outCorner.push_back(ms[i].referenceCorner);
-        }
-      };
+  const auto gateEpipolar = [&](const std::vector<WideBaselineMatch>& ms,
+                                const std::vector<std::size_t>& measurement,
+                                const PreparedReference& ref, const Eigen::Matrix3d& F,
+                                bool useEpipolar, const std::vector<char>& distinctive,
+                                std::vector<char>& inlier, std::vector<EpipolarMatch>& out,
+                                std::vector<int>& outCorner, std::vector<std::size_t>& outMatch) {
+    const bool inB = &ref == &refB;
+    const double group =
+        groupFactor(inB ? MeasurementGroup::EpipolarB : MeasurementGroup::EpipolarA);
+    inlier.assign(ms.size(), 0);
+    for (std::size_t i = 0; i < ms.size(); ++i) {
+      const Eigen::Vector2d& pK = meas.undistorted[measurement[i]];
+      const auto rc = static_cast<std::size_t>(ms[i].referenceCorner);
+      if (maxEpipolarDistance(F, ref.measured[rc], pK) > gate) continue;
+      inlier[i] = 1;
+      in.distinctive += distinctive[rc] ? 1 : 0;
+      if (!useEpipolar) continue;
+      const double reliability =
+          cornerReliability.varianceFactor(cornerSource(inB, ms[i].referenceCorner));
+      out.push_back({ref.measured[rc], pK,
+                     sigmaOf(c.corners[static_cast<std::size_t>(ms[i].frameCorner)].contrast,
+                             ref.contrast[rc]) *
+                         std::sqrt(reliability * group)});
+      outCorner.push_back(ms[i].referenceCorner);
+      outMatch.push_back(i);
+    }
+  };
   gateEpipolar(m.toA, meas.toA, refA, FA, useEpipolarA, distinctiveA, in.inlierA,
-               in.measurements.toA, in.epipolarCornerA);
+               in.measurements.toA, in.epipolarCornerA, in.epipolarMatchA);
   gateEpipolar(m.toB, meas.toB, refB, FB, useEpipolarB, distinctiveB, in.inlierB,
-               in.measurements.toB, in.epipolarCornerB);
+               in.measurements.toB, in.epipolarCornerB, in.epipolarMatchB);
   for (const Pair3D& p : pairs) {
     const Eigen::Vector3d& P = map.matches[static_cast<std::size_t>(p.mapMatch)].pointA;
     const Eigen::Vector2d& pK = meas.undistorted[p.measurement];
@@ -850,9 +902,9 @@ std::optional<PoseTracker::Impl::Inliers> PoseTracker::Impl::rejectOutliers(
     ThreeViewMatch t{P, pK, sigma};
     if (params.pose.mapPointSdScale > 0)
       t.whitening = threeViewWhitening(TAkLin, p.mapMatch, sigma);
-    const double reliability =
-        pointReliability.varianceFactor(static_cast<std::size_t>(p.mapMatch));
-    if (reliability != 1.0) t.whitening = t.whiteningOrScalar() / std::sqrt(reliability);
+    const double factor = pointReliability.varianceFactor(static_cast<std::size_t>(p.mapMatch)) *
+                          groupFactor(MeasurementGroup::CornerPoints);
+    if (factor != 1.0) t.whitening = t.whiteningOrScalar() / std::sqrt(factor);
     in.threeViewMapMatch.push_back(p.mapMatch);
     in.measurements.threeView.push_back(t);
   }
@@ -888,8 +940,9 @@ void PoseTracker::Impl::measureKeypoints(const cv::Mat& gray, double gate, Inlie
     ThreeViewMatch t{P, pK, std::max(floor, found[i].sigmaPx)};
     if (params.pose.mapPointSdScale > 0)
       t.whitening = threeViewWhitening(TAkLin, P, keypointCovariance(P), t.sigma);
-    const double reliability = pointReliability.varianceFactor(source);
-    if (reliability != 1.0) t.whitening = t.whiteningOrScalar() / std::sqrt(reliability);
+    const double factor =
+        pointReliability.varianceFactor(source) * groupFactor(MeasurementGroup::KeypointPoints);
+    if (factor != 1.0) t.whitening = t.whiteningOrScalar() / std::sqrt(factor);
     in.threeViewMapMatch.push_back(static_cast<int>(source));
     in.measurements.threeView.push_back(t);
     ++r.keypointMeasurements;
@@ -981,29 +1034,128 @@ void PoseTracker::Impl::keepInliers(const FrameCorners& c, const FrameMatches& m
 void PoseTracker::Impl::recordResiduals(const RigidPose& TAk, const Inliers& in) {
   pendingReliability.clear();
   const PoseMeasurements& pm = in.measurements;
+  const TermResiduals w = whitenedResiduals(TAk, pm);
+  MeasurementGroupNoise::FrameResiduals groups;
+  const double cornerGroup = groupFactor(MeasurementGroup::CornerPoints);
+  const double keypointGroup = groupFactor(MeasurementGroup::KeypointPoints);
   for (std::size_t i = 0; i < pm.threeView.size(); ++i) {
-    const ThreeViewMatch& t = pm.threeView[i];
     const auto source = static_cast<std::size_t>(in.threeViewMapMatch[i]);
-    const Eigen::Vector2d whitened = t.whiteningOrScalar() *
-                                     std::sqrt(pointReliability.varianceFactor(source)) *
-                                     (map.camera.project(TAk * t.pointA) - t.pK);
-    pendingReliability.push_back({true, source, 0.5 * whitened.squaredNorm()});
+    const bool corner = i < in.threeViewMeasurement.size();
+    const double group = corner ? cornerGroup : keypointGroup;
+    // Per image axis, without this source's factor (MeasurementReliability::observe) ...
+    pendingReliability.push_back(
+        {true, source, 0.5 * w.threeView[i] * group * pointReliability.varianceFactor(source)});
+    // ... and without its kind's (MeasurementGroupNoise::observe).
+    groups
+        .whitenedSquared[static_cast<std::size_t>(corner ? MeasurementGroup::CornerPoints
+                                                         : MeasurementGroup::KeypointPoints)]
+        .push_back(w.threeView[i] * group);
   }
-  const auto epipolar = [&](const std::vector<EpipolarMatch>& terms,
-                            const std::vector<int>& corners, bool inB, const RigidPose& refToK) {
-    const Eigen::Matrix3d F = fundamentalMatrix(map.camera.K(), refToK);
-    for (std::size_t i = 0; i < terms.size(); ++i) {
-      const EpipolarMatch& e = terms[i];
+  const auto epipolar = [&](const std::vector<double>& squared, const std::vector<int>& corners,
+                            bool inB) {
+    const MeasurementGroup kind = inB ? MeasurementGroup::EpipolarB : MeasurementGroup::EpipolarA;
+    const double group = groupFactor(kind);
+    for (std::size_t i = 0; i < squared.size(); ++i) {
       const std::size_t source = cornerSource(inB, corners[i]);
-      const double sigma = e.sigma / std::sqrt(cornerReliability.varianceFactor(source));
+      pendingReliability.push_back(
+          {false, source, squared[i] * group * cornerReliability.varianceFactor(source)});
+      groups.whitenedSquared[static_cast<std::size_t>(kind)].push_back(squared[i] * group);
+    }
+  };
+  epipolar(w.toA, in.epipolarCornerA, false);
+  epipolar(w.toB, in.epipolarCornerB, true);
+  pendingGroupResiduals = std::move(groups);
+}
+
+PoseTracker::Impl::TermResiduals PoseTracker::Impl::whitenedResiduals(
+    const RigidPose& TAk, const PoseMeasurements& pm) const {
+  TermResiduals out;
+  for (const ThreeViewMatch& t : pm.threeView)
+    out.threeView.push_back(
+        (t.whiteningOrScalar() * (map.camera.project(TAk * t.pointA) - t.pK)).squaredNorm());
+  const auto epipolar = [&](const std::vector<EpipolarMatch>& terms, const RigidPose& refToK,
+                            std::vector<double>& squared) {
+    const Eigen::Matrix3d F = fundamentalMatrix(map.camera.K(), refToK);
+    for (const EpipolarMatch& e : terms) {
       const Eigen::Vector3d line = F * Eigen::Vector3d(e.pRef.x(), e.pRef.y(), 1.0);
       const double distance =
           Eigen::Vector3d(e.pK.x(), e.pK.y(), 1.0).dot(line) / std::hypot(line.x(), line.y());
-      pendingReliability.push_back({false, source, distance * distance / (sigma * sigma)});
+      squared.push_back(distance * distance / (e.sigma * e.sigma));
     }
   };
-  epipolar(pm.toA, in.epipolarCornerA, false, TAk);
-  epipolar(pm.toB, in.epipolarCornerB, true, TAk * map.T_AB().inverse());
+  epipolar(pm.toA, TAk, out.toA);
+  epipolar(pm.toB, TAk * map.T_AB().inverse(), out.toB);
+  return out;
+}
+
+// Stage 8b, outlier terms: at the estimate, each kind of term (corner points, keypoint points,
+// epipolar to A, to B) has its robust scale (median); a term beyond pose.reject_sigmas times it
+// (and at least that many modelled SDs) is dropped, unless too few corner points would remain.
+// The count dropped; the caller estimates the pose again.
+int PoseTracker::Impl::dropOutlierTerms(const RigidPose& TAk, Inliers& in) const {
+  const double k = params.pose.rejectSigmas;
+  if (!(k > 0)) return 0;
+  PoseMeasurements& pm = in.measurements;
+  const TermResiduals w = whitenedResiduals(TAk, pm);
+  const auto boundOf = [&](const std::vector<double>& squared, std::size_t from, std::size_t to,
+                           ResidualDimension dimension) {
+    std::vector<double> norms;
+    for (std::size_t i = from; i < to; ++i) norms.push_back(std::sqrt(squared[i]));
+    if (static_cast<int>(norms.size()) < MeasurementGroupNoise::kMinTerms)
+      return std::numeric_limits<double>::infinity();
+    const double bound = k * std::max(1.0, robustSd(norms, dimension));
+    return bound * bound;
+  };
+  const std::size_t corners = in.threeViewMeasurement.size();
+  const double cornerBound = boundOf(w.threeView, 0, corners, ResidualDimension::Two);
+  const double keypointBound =
+      boundOf(w.threeView, corners, w.threeView.size(), ResidualDimension::Two);
+  int keptCorners = 0;
+  for (std::size_t i = 0; i < corners; ++i) keptCorners += w.threeView[i] <= cornerBound ? 1 : 0;
+  if (keptCorners < limits.minInliers) return 0;
+  int dropped = 0;
+  {
+    PoseMeasurements kept;
+    std::vector<std::size_t> measurement;
+    std::vector<int> mapMatch;
+    for (std::size_t i = 0; i < pm.threeView.size(); ++i) {
+      const bool corner = i < corners;
+      if (w.threeView[i] > (corner ? cornerBound : keypointBound)) {
+        ++dropped;
+        continue;
+      }
+      kept.threeView.push_back(pm.threeView[i]);
+      if (corner) measurement.push_back(in.threeViewMeasurement[i]);
+      mapMatch.push_back(in.threeViewMapMatch[i]);
+    }
+    pm.threeView = std::move(kept.threeView);
+    in.threeViewMeasurement = std::move(measurement);
+    in.threeViewMapMatch = std::move(mapMatch);
+  }
+  const auto epipolar = [&](const std::vector<double>& squared, std::vector<EpipolarMatch>& terms,
+                            std::vector<int>& corner, std::vector<std::size_t>& match,
+                            std::vector<char>& inlier) {
+    const double bound = boundOf(squared, 0, squared.size(), ResidualDimension::One);
+    std::vector<EpipolarMatch> keptTerms;
+    std::vector<int> keptCorner;
+    std::vector<std::size_t> keptMatch;
+    for (std::size_t i = 0; i < terms.size(); ++i) {
+      if (squared[i] > bound) {
+        ++dropped;
+        inlier[match[i]] = 0;  // no seed for the next frame either
+        continue;
+      }
+      keptTerms.push_back(terms[i]);
+      keptCorner.push_back(corner[i]);
+      keptMatch.push_back(match[i]);
+    }
+    terms = std::move(keptTerms);
+    corner = std::move(keptCorner);
+    match = std::move(keptMatch);
+  };
+  epipolar(w.toA, pm.toA, in.epipolarCornerA, in.epipolarMatchA, in.inlierA);
+  epipolar(w.toB, pm.toB, in.epipolarCornerB, in.epipolarMatchB, in.inlierB);
+  return dropped;
 }
 
 PoseTrackingResult PoseTracker::Impl::process(const cv::Mat& frame) {
@@ -1019,10 +1171,13 @@ PoseTrackingResult PoseTracker::Impl::process(const cv::Mat& frame) {
   const cv::Mat gray = toGray8(frame);
   const double scale = resolutionScale(gray.size());
   const double gate = limits.gatePx * scale;
-  if (!seedPose && state == TrackingState::Tracking)
+  if (!seedPose && state == TrackingState::Tracking) {
     for (const PendingObservation& o : pendingReliability)
       (o.point ? pointReliability : cornerReliability).observe(o.source, o.whitenedSquared);
+    if (pendingGroupResiduals) groupNoise.observe(std::move(*pendingGroupResiduals));
+  }
   pendingReliability.clear();
+  pendingGroupResiduals.reset();
 
   // 1. Corners.
   Clock::time_point t = Clock::now();
@@ -1087,8 +1242,13 @@ PoseTrackingResult PoseTracker::Impl::process(const cv::Mat& frame) {
 
   // 8. Pose: standard least squares or the temporal regulariser (Eq. 12 / Eq. 13).
   t = Clock::now();
-  const std::optional<PoseEstimate> est =
+  std::optional<PoseEstimate> est =
       regularizer->step(*estimator, inliers->measurements, inliers->xLin);
+  // 8b. Terms far off their kind's scale at the estimate dropped, and the frame estimated again.
+  if (est && est->x.allFinite() && dropOutlierTerms(RigidPose::fromVector6(est->x), *inliers) > 0) {
+    est = regularizer->redoLastStep(*estimator, inliers->measurements, inliers->xLin);
+    r.inliers = static_cast<int>(inliers->threeViewMeasurement.size());
+  }
   r.timings.push_back({"pose", msSince(t)});
   if (!est || !est->x.allFinite()) {
     lose(r, "the pose estimator did not converge");
@@ -1193,6 +1353,8 @@ void PoseTracker::forgetLearnedReliability() {
   impl_->pointReliability.clear();
   impl_->cornerReliability.clear();
   impl_->pendingReliability.clear();
+  impl_->groupNoise.clear();
+  impl_->pendingGroupResiduals.reset();
 }
 void PoseTracker::reset() {
   impl_->seedPose.reset();
@@ -1203,6 +1365,7 @@ void PoseTracker::reset() {
   impl_->prevA.clear();
   impl_->prevB.clear();
   impl_->pendingReliability.clear();
+  impl_->pendingGroupResiduals.reset();
 }
 void PoseTracker::setVerificationKeypoints(std::vector<VerificationKeypoint> inA,
                                            std::vector<VerificationKeypoint> inB) {

@@ -92,7 +92,8 @@ class PoseTracker {
   // Back to initialising. What the tracker has learned of its map's points and corners
   // (pose.reliability_prior_observations) is kept: losing track says nothing about them.
   void reset();
-  void forgetLearnedReliability();  // every map point and corner back to the corner model
+  // Every map point, corner and kind of term back to the corner model.
+  void forgetLearnedReliability();
   // The next process() starts from this world->camera pose instead of the previous frame (a
   // hand-over from another reference pair, or a relocalisation candidate): the reference corners'
   // 3D points projected with it seed the wide-baseline matching (H = identity, candidates within
