@@ -6,7 +6,9 @@
 # issue 14: 6-DOF on the real postcard clip (../shared/data, skipped when absent) vs ORB + PnP;
 # issue 24: the real desk clip with true poses (../shared/data/desk-chessboard, skipped when
 # absent): reftrack vs SIFT / AKAZE / ORB + PnP per frame and ORB + PnP + Kalman, in sequence and
-# shuffled order (table, CSV and plot in out/bench/desk-chessboard).
+# shuffled order (table, CSV and plot in out/bench/desk-chessboard); every real clip with true
+# poses (app/research/suites/real-clips.yml: `bench-real --suite`, peers cached in
+# out/peer-cache; one table, files in out/bench/real-clips).
 # Usage: bench.sh [frames]   (default 300 frames per 6-DOF sequence; the walkaround runs 1000)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -40,6 +42,13 @@ if [[ -d "$desk/frames" ]]; then
     --out "$out/desk-chessboard"
 else
   echo "bench-real --input skipped: $desk not found (the shared real recordings)"
+fi
+data="$root/../shared/data"
+if [[ -d "$data" ]]; then
+  "$build/app/reftrack" bench-real --suite "$root/app/research/suites/real-clips.yml" \
+    --data "$data" --peer-cache "$root/out/peer-cache" --out "$out/real-clips"
+else
+  echo "bench-real --suite skipped: $data not found (the shared real recordings)"
 fi
 # HD speed: homography and 6-DOF at 640x480, 1280x720 and 1920x1080 (thread CPU, baselines beside)
 bash "$root/scripts/bench-hd.sh" "$frames"

@@ -1,6 +1,7 @@
 #include "app/research/baselines/PerFramePnpPeer.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <map>
 #include <opencv2/calib3d.hpp>
@@ -127,6 +128,16 @@ PerFramePnpPeer::PerFramePnpPeer(const std::string& detector, const PinholeCamer
   if (points_.size() < 6)
     throw Error("per-frame PnP peer (" + detector + "): " + std::to_string(points_.size()) +
                 " points triangulated from the references, fewer than the 6 PnP needs");
+}
+
+std::string perFramePnpPeerName(const std::string& detector) {
+  std::string name;
+  for (char c : detector) name += static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return name + "+PnP";
+}
+
+std::string PerFramePnpPeer::noPoseReason(const PerFramePnpResult& result) const {
+  return result.matches < params_.minInliers ? "too few 2D-3D matches" : "too few PnP inliers";
 }
 
 int PerFramePnpPeer::referencePoints(int r) const {

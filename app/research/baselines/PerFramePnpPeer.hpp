@@ -37,6 +37,9 @@ struct PerFramePnpResult {
   int keypoints = 0, matches = 0, inliers = 0;
 };
 
+// The peer's name in tables: "sift" -> "SIFT+PnP".
+std::string perFramePnpPeerName(const std::string& detector);
+
 class PerFramePnpPeer {
  public:
   // detector: "sift", "akaze" or "orb"; references: images (BGR or grey, the camera's size) with
@@ -48,6 +51,9 @@ class PerFramePnpPeer {
                   const std::vector<RigidPose>& referencePoses, PerFramePnpPeerParams params = {});
 
   PerFramePnpResult locate(const cv::Mat& frame) const;  // BGR or grey, the camera's size
+
+  // Why `result` (of locate()) has no pose: "too few 2D-3D matches" or "too few PnP inliers".
+  std::string noPoseReason(const PerFramePnpResult& result) const;
 
   const std::string& detectorName() const { return detectorName_; }
   const PerFramePnpPeerParams& params() const { return params_; }

@@ -1,5 +1,9 @@
 // `reftrack bench-real`: the 6-DOF tracker on real footage with ground truth, beside its peers
-// measured in the same run. Two modes:
+// measured in the same run. Three modes:
+//  - `--suite FILE` (RealClipSuiteBenchmark): every clip of a suite file (the project's real
+//    clips: app/research/suites/real-clips.yml) in order and shuffled as one sequence, reftrack
+//    beside SIFT / AKAZE / ORB + PnP run once per clip (optionally from a peer cache): one table
+//    over every clip, its last line the worst clip's reftrack mean over its best peer's.
 //  - `--input` (GroundTruthBenchmark): any recording with a true pose per frame (an image folder
 //    or video with a TUM file, tum:DIR, euroc:DIR), references taken from its frames: reftrack,
 //    SIFT / AKAZE / ORB + PnP per frame and ORB + PnP + Kalman, in each --order (default: sequence
@@ -20,6 +24,9 @@
 #include "app/research/sixdof/GroundTruthBenchmark.hpp"
 #include "app/research/sixdof/GroundTruthBenchmarkReport.hpp"
 #include "app/research/sixdof/GroundTruthSequence.hpp"
+#include "app/research/sixdof/RealClipSuite.hpp"
+#include "app/research/sixdof/RealClipSuiteBenchmark.hpp"
+#include "app/research/sixdof/RealClipSuiteReport.hpp"
 #include "app/research/sixdof/RealFootageBenchmark.hpp"
 #include "app/research/sixdof/SixDofRuns.hpp"
 #include "app/sources/FrameSourceFactory.hpp"
@@ -42,6 +49,11 @@ struct BenchRealArgs {
   std::string awayInput;  // away:N orders: the other scene (image folder, glob or video)
   int awayFrames = 300;   // ... at most this many of its frames are read
   std::filesystem::path out;
+  // --suite mode (RealClipSuiteBenchmark); --methods, --order, --shuffle-seed go to `suite` when
+  // given, else its defaults.
+  std::filesystem::path suiteFile;
+  RealClipSuiteOptions suite;
+  std::string peerCache;
 };
 
 // The other scene of the away:N orders: up to `limit` frames of `input`, BGR.
@@ -92,6 +104,31 @@ void runGroundTruthMode(const BenchRealArgs& a) {
   }
 }
 
+void runSuiteMode(const BenchRealArgs& a) {
+  cv::setNumThreads(1);
+  const RealClipSuite suite = loadRealClipSuite(a.suiteFile);
+  RealClipSuiteOptions o = a.suite;
+  if (!a.peerCache.empty()) o.peerCache = a.peerCache;
+  // The data root and every clip's files, checked before the parameters and the first clip.
+  for (const std::string& skipped : selectRealClips(suite, o).skipped)
+    std::fprintf(stderr, "skipped clip %s\n", skipped.c_str());
+  const TrackerParams params = a.params.empty() ? TrackerParams{} : TrackerParams::load(a.params);
+  const ReferencePreparerParams prepareParams =
+      a.prepareParams.empty() ? ReferencePreparerParams{}
+                              : ReferencePreparerParams::load(a.prepareParams);
+  const RealClipSuiteResult r =
+      runRealClipSuite(suite, o, params, prepareParams,
+                       [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); });
+  std::printf("%s", realClipSuiteTable(r).c_str());
+  if (!a.out.empty()) {
+    const RealClipSuiteFiles files = writeRealClipSuiteFiles(r, a.out);
+    std::printf("wrote the table %s and, per clip, its table, per-frame errors and plot in",
+                files.table.c_str());
+    for (const auto& dir : files.clipDirs) std::printf(" %s", dir.c_str());
+    std::printf("\n");
+  }
+}
+
 void printRun(const RealFootageRun& r) {
   const ErrorStats grid = ErrorStats::of(r.gridErrorPx), cube = ErrorStats::of(r.cubeErrorPx);
   std::printf("%-18s %6d/%-4d %6.1f%% %9.3f %9.3f %9.3f %9.3f %10.2f %10.2f\n", r.name.c_str(),
@@ -110,11 +147,12 @@ CommandRegistration registerBenchRealCommand(CLI::App& parent) {
       "bench-real",
       "6-DOF tracking of real footage with ground truth vs per-frame OpenCV peers and ORB + PnP + "
       "Kalman: cube error, coverage, wrong poses (also shuffled, cut or strided orders), thread "
-      "CPU per frame");
+      "CPU per frame; --suite: every real clip of a suite file in one table");
   // Either mode.
-  sub->add_option("--frames", a->options.frames, "Frames benchmarked from the start (0: all)")
-      ->check(CLI::Range(0, 1000000))
-      ->capture_default_str();
+  CLI::Option* frames =
+      sub->add_option("--frames", a->options.frames, "Frames benchmarked from the start (0: all)")
+          ->check(CLI::Range(0, 1000000))
+          ->capture_default_str();
   CLI::Option* passes =
       sub->add_option("--passes", a->options.passes,
                       "Passes over the frames for the timing (errors from the first; default 3 "
@@ -153,24 +191,26 @@ CommandRegistration registerBenchRealCommand(CLI::App& parent) {
                               ->capture_default_str();
   CLI::Option* shuffleSeed =
       sub->add_option("--shuffle-seed", a->groundTruth.shuffleSeed,
-                      "With --input: seed of the shuffled orders (shuffled, shuffled-sequence, "
-                      "cuts:N)")
+                      "With --input or --suite: seed of the shuffled orders (shuffled, "
+                      "shuffled-sequence, cuts:N)")
           ->capture_default_str();
   CLI::Option* order =
       sub->add_option(
              "--order", a->groundTruth.orders,
-             "With --input: frame orders to run every method in, comma-separated, of "
-             "sequence, shuffled (every frame a cold start), shuffled-sequence (that order "
-             "as one sequence, no reset), cuts:N (N contiguous segments in a shuffled "
-             "order, one sequence; frames to re-acquire after each cut), stride:K (frames "
-             "0, K, 2K, ... in order; only those scored), away:N (in order, N frames of "
-             "--away-input after the first half: poses there are wrong; the CPU spent there "
-             "and the frames to re-acquire after the return)")
+             "With --input or --suite (default there: sequence,shuffled-sequence): frame orders "
+             "to run every method in, comma-separated, of sequence, shuffled (every frame a "
+             "cold start), shuffled-sequence (that order as one sequence, no reset), cuts:N (N "
+             "contiguous segments in a shuffled order, one sequence; frames to re-acquire after "
+             "each cut), stride:K (frames 0, K, 2K, ... in order; only those scored), away:N "
+             "(--input only: in order, N frames of --away-input after the first half: poses "
+             "there are wrong; the CPU spent there and the frames to re-acquire after the "
+             "return)")
           ->delimiter(',')
           ->capture_default_str();
   CLI::Option* methods =
       sub->add_option("--methods", a->groundTruth.methods,
-                      "With --input: methods to run, of reftrack,sift,akaze,orb,kalman")
+                      "With --input or --suite (default there: reftrack,sift,akaze,orb): methods "
+                      "to run, of reftrack,sift,akaze,orb,kalman")
           ->delimiter(',')
           ->capture_default_str();
   CLI::Option* awayInput =
@@ -184,11 +224,30 @@ CommandRegistration registerBenchRealCommand(CLI::App& parent) {
           ->capture_default_str();
   CLI::Option* out = sub->add_option(
       "--out", a->out,
-      "With --input: folder for table.txt, cube_errors.csv and cube_errors.png (written once "
-      "every run is done)");
-  for (CLI::Option* o : {camera, gt, refFrames, cubeCentre, cubeEdge, shuffleSeed, order, methods,
-                         awayInput, awayFrames, out})
+      "With --input: folder for table.txt, cube_errors.csv and cube_errors.png; with --suite: "
+      "table.txt (the suite's table) and per clip CLIP/table.txt, cube_errors.csv and "
+      "cube_errors.png (written once every run is done)");
+  for (CLI::Option* o : {camera, gt, refFrames, cubeCentre, cubeEdge, awayInput, awayFrames})
     o->needs(input);
+  // Every real clip of a suite file.
+  CLI::Option* suite =
+      sub->add_option("--suite", a->suiteFile,
+                      "A suite file of real clips with true poses (YAML; the project's: "
+                      "app/research/suites/real-clips.yml); selects this mode");
+  CLI::Option* data = sub->add_option("--data", a->suite.dataRoot,
+                                      "With --suite: the folder the suite's paths are relative to")
+                          ->capture_default_str();
+  CLI::Option* clips =
+      sub->add_option("--clips", a->suite.clips,
+                      "With --suite: the clips to run, by name, comma-separated (default: all)")
+          ->delimiter(',');
+  CLI::Option* peerCache = sub->add_option(
+      "--peer-cache", a->peerCache,
+      "With --suite: a folder keeping the per-frame peers' poses between runs, keyed by "
+      "everything they depend on (frame files' names, sizes and times, references and their "
+      "poses, camera, method and its settings); default: no cache");
+  for (CLI::Option* o : {data, clips, peerCache}) o->needs(suite);
+  suite->excludes(input);
   // A card clip (the default mode).
   CLI::Option* clip = sub->add_option("--clip", a->clip,
                                       "Video of a card on a table (default: ViSP's postcard clip)")
@@ -227,10 +286,27 @@ CommandRegistration registerBenchRealCommand(CLI::App& parent) {
       "cube error, distance from each reference, matches, inliers, the card's corners and the "
       "truth's own corner shift (refined vs followed homography), message");
   for (CLI::Option* o :
-       {clip, references, target, targetWidth, focal, noBaseline, trajectory, framesCsv})
+       {clip, references, target, targetWidth, focal, noBaseline, trajectory, framesCsv}) {
     o->excludes(input);
+    o->excludes(suite);
+  }
+  for (CLI::Option* o : {frames, passes}) o->excludes(suite);  // a suite's clips name their frames
   // Usage errors (exit 2): checked when the command line is parsed, before anything is read.
-  sub->callback([a, input, passes] {
+  sub->callback([a, input, passes, suite, methods, order, shuffleSeed, out] {
+    if (suite->count() > 0) {
+      if (methods->count() > 0) a->suite.methods = a->groundTruth.methods;
+      if (order->count() > 0) a->suite.orders = a->groundTruth.orders;
+      a->suite.shuffleSeed = a->groundTruth.shuffleSeed;
+      try {
+        a->suite.check();
+      } catch (const Error& e) {
+        throw CLI::ValidationError("bench-real", e.what());
+      }
+      return;
+    }
+    if (input->count() == 0)
+      for (CLI::Option* o : {methods, order, shuffleSeed, out})
+        if (o->count() > 0) throw CLI::ValidationError(o->get_name(), "needs --input or --suite");
     if (input->count() > 0) {
       if (passes->count() == 0) a->options.passes = 1;
       a->groundTruth.passes = a->options.passes;
@@ -276,6 +352,17 @@ CommandRegistration registerBenchRealCommand(CLI::App& parent) {
       "thread (cv::setNumThreads(1)). E.g. `--methods reftrack --order\n"
       "sequence,shuffled-sequence,cuts:8,stride:4` for reftrack alone (the peers take ~100 ms a\n"
       "frame).\n"
+      "With --suite FILE: every clip of the suite file (YAML, e.g.\n"
+      "app/research/suites/real-clips.yml: per clip its folder under --data, frame range,\n"
+      "references, scored cube and wrong_px) runs as with --input, in every --order (default\n"
+      "sequence,shuffled-sequence) with --methods (default reftrack,sift,akaze,orb). The "
+      "per-frame\n"
+      "peers pose each clip's frames once and those poses are reused in every order;\n"
+      "--peer-cache DIR keeps them between runs. One table: per clip, order and method the\n"
+      "frames, tracked, mean and p95 cube error, poses within 5 px, wrong poses (more than the\n"
+      "clip's wrong_px off), reftrack's median true / predicted cube error and ms per frame; the\n"
+      "last line: the worst clip's reftrack mean over its best peer's. A clip whose folder is\n"
+      "missing is skipped and named; none found is an error.\n"
       "Card clip (no --input), ground truth (PlanarTargetTruth): the card's corners are\n"
       "followed from frame 0 by the homography tracker and refined by cornerSubPix; IPPE on them\n"
       "gives each frame's pose, the card's plane being the world. The map is prepared from the\n"
@@ -285,7 +372,11 @@ CommandRegistration registerBenchRealCommand(CLI::App& parent) {
       "projection through the card's pose. Speed: thread CPU per tracked frame, one thread\n"
       "(cv::setNumThreads(1)); each pass runs both trackers in turn. Stage times are wall clock,\n"
       "first pass.");
-  return {sub, [a, input] {
+  return {sub, [a, input, suite] {
+            if (suite->count() > 0) {
+              runSuiteMode(*a);
+              return;
+            }
             if (input->count() > 0) {
               runGroundTruthMode(*a);
               return;

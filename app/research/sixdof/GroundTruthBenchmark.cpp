@@ -39,12 +39,22 @@ void GroundTruthBenchmarkOptions::check() const {
   if (!cubeCentre.allFinite()) throw Error("bench-real: --cube-centre must be finite");
   if (!(cubeEdge > 0) || !std::isfinite(cubeEdge))
     throw Error("bench-real: --cube-edge must be > 0 m");
+  if (!(cubeInFrontM >= 0) || !std::isfinite(cubeInFrontM))
+    throw Error("bench-real: the cube's distance in front of the reference must be >= 0 m");
+  if (cubeInFrontM > 0 && cubeInFrontM <= 0.5 * cubeEdge)
+    throw Error("bench-real: a cube " + std::to_string(cubeInFrontM) +
+                " m in front of the reference with an edge of " + std::to_string(cubeEdge) +
+                " m reaches behind the camera");
   if (frames < 0) throw Error("bench-real: --frames must be >= 0 (0: every frame)");
   if (passes < 1) throw Error("bench-real: --passes must be >= 1");
-  for (const FrameOrder& order : parseFrameOrders(orders))
+  for (const FrameOrder& order : parseFrameOrders(orders)) {
     if (order.kind == FrameOrderKind::Away && awayFrames.empty() && awayDescription.empty())
       throw Error("bench-real: --order " + order.name +
                   " needs the other scene's frames (--away-input)");
+    if (order.kind == FrameOrderKind::Away && peerPoses)
+      throw Error("bench-real: --order " + order.name +
+                  ": the per-frame peers' replayed poses cover the sequence's frames only");
+  }
   for (const cv::Mat& f : awayFrames)
     if (f.empty() || f.type() != CV_8UC3)
       throw Error("bench-real: --away-input: a frame is empty or not 8-bit BGR");
@@ -157,6 +167,25 @@ std::vector<Eigen::Vector3d> cubeOn(const Eigen::Vector3d& baseCentre, double ed
   return cube;
 }
 
+std::vector<Eigen::Vector3d> cubeInFrontOf(const RigidPose& worldToCamera, double distance,
+                                           double edge) {
+  const RigidPose cameraToWorld = worldToCamera.inverse();
+  std::vector<Eigen::Vector3d> cube;
+  for (const Eigen::Vector3d& v : cubeVertices(edge))  // base centred at 0, up to +z
+    cube.push_back(cameraToWorld * Eigen::Vector3d(v.x(), v.y(), distance + v.z() - 0.5 * edge));
+  return cube;
+}
+
+std::vector<Eigen::Vector3d> scoringCube(const GroundTruthBenchmarkOptions& o,
+                                         const GroundTruthSequence& s) {
+  if (o.cubeInFrontM <= 0) return cubeOn(o.cubeCentre, o.cubeEdge);
+  const std::size_t first = static_cast<std::size_t>(o.references.at(0));
+  if (first >= s.truth.size() || !s.truth[first])
+    throw Error("bench-real: the cube is placed in front of reference frame " +
+                std::to_string(s.firstFrame + o.references.at(0)) + ", which has no true pose");
+  return cubeInFrontOf(*s.truth[first], o.cubeInFrontM, o.cubeEdge);
+}
+
 double cubeErrorPx(const PinholeCamera& camera, const std::vector<Eigen::Vector3d>& cube,
                    const RigidPose& truth, const RigidPose& estimate) {
   double sum = 0.0;
@@ -209,18 +238,14 @@ class PeerMethod final : public PoseMethod {
  public:
   PeerMethod(const std::string& detector, const GroundTruthSequence& s,
              const std::vector<int>& references)
-      : peer_(detector, s.camera, imagesOf(s, references), posesOf(s, references)) {
-    for (char c : detector) name_ += static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-    name_ += "+PnP";
-  }
+      : peer_(detector, s.camera, imagesOf(s, references), posesOf(s, references)),
+        name_(perFramePnpPeerName(detector)) {}
   std::string name() const override { return name_; }
   void startRun() override {}
   void coldStart() override {}
   std::optional<RigidPose> locate(const cv::Mat& frame, std::string& reason) override {
     const PerFramePnpResult r = peer_.locate(frame);
-    if (!r.worldToCamera)
-      reason =
-          r.matches < peer_.params().minInliers ? "too few 2D-3D matches" : "too few PnP inliers";
+    if (!r.worldToCamera) reason = peer_.noPoseReason(r);
     return r.worldToCamera;
   }
   int modelPoints() const { return peer_.modelPoints(); }
@@ -262,6 +287,24 @@ class KalmanMethod final : public PoseMethod {
   ReferenceMap pair_;
   OrbPnpKalmanParams params_;
   std::unique_ptr<OrbPnpKalmanTracker> tracker_;
+};
+
+// A method that gives no frame a pose, the reason given: reftrack or the Kalman baseline without
+// their map (the preparation refused it); the stand-in of a replayed peer (never played).
+class NoPoseMethod final : public PoseMethod {
+ public:
+  NoPoseMethod(std::string name, std::string reason)
+      : name_(std::move(name)), reason_(std::move(reason)) {}
+  std::string name() const override { return name_; }
+  void startRun() override {}
+  void coldStart() override {}
+  std::optional<RigidPose> locate(const cv::Mat&, std::string& reason) override {
+    reason = reason_;
+    return std::nullopt;
+  }
+
+ private:
+  std::string name_, reason_;
 };
 
 // The sequence's nominal frame rate from its timestamps (30 when they do not tell).
@@ -309,6 +352,23 @@ void playFrames(PoseMethod& method, const GroundTruthSequence& s,
   }
 }
 
+void replayPeerPoses(const PeerPoses& peer, const GroundTruthSequence& s,
+                     const std::vector<Eigen::Vector3d>& cube, MethodRun& run) {
+  for (int k : run.plan.frames) {
+    if (k < 0) throw Error("bench-real: a per-frame peer's poses cannot be replayed in away:N");
+    const std::size_t frame = static_cast<std::size_t>(k);
+    run.cpuMs.push_back(peer.cpuMs.at(frame));
+    if (frame >= run.poses.size()) continue;
+    run.poses[frame] = peer.poses[frame];
+    const std::optional<RigidPose>& truth = s.truth[frame];
+    if (!truth) continue;
+    if (peer.poses[frame])
+      run.errorPx[frame] = cubeErrorPx(s.camera, cube, *truth, *peer.poses[frame]);
+    else
+      ++run.noPose[peer.reasons[frame]];
+  }
+}
+
 GroundTruthBenchmarkResult runGroundTruthBenchmark(const GroundTruthSequence& s,
                                                    const GroundTruthBenchmarkOptions& o,
                                                    const TrackerParams& params,
@@ -320,13 +380,16 @@ GroundTruthBenchmarkResult runGroundTruthBenchmark(const GroundTruthSequence& s,
   if (o.frames > available)
     throw Error("bench-real: --frames " + std::to_string(o.frames) + " but " + s.framesDescription +
                 " holds " + std::to_string(available) + " frames");
-  for (int r : o.references) {
+  for (int r : o.references) {  // named by the input's frame index
+    const std::string frame = std::to_string(s.firstFrame + r);
     if (r >= available)
-      throw Error("bench-real: reference frame " + std::to_string(r) + " is beyond the " +
-                  std::to_string(available) + " frames of " + s.framesDescription);
+      throw Error("bench-real: reference frame " + frame + " is beyond the " +
+                  std::to_string(available) + " frames of " + s.framesDescription +
+                  (s.firstFrame > 0 ? " read from frame " + std::to_string(s.firstFrame) + " on"
+                                    : std::string()));
     if (!s.truth[static_cast<std::size_t>(r)])
-      throw Error("bench-real: reference frame " + std::to_string(r) +
-                  " has no ground-truth pose (" + s.groundTruthDescription + ")");
+      throw Error("bench-real: reference frame " + frame + " has no ground-truth pose (" +
+                  s.groundTruthDescription + ")");
   }
   GroundTruthBenchmarkResult result;
   result.framesDescription = s.framesDescription;
@@ -336,8 +399,11 @@ GroundTruthBenchmarkResult runGroundTruthBenchmark(const GroundTruthSequence& s,
   for (int k = 0; k < result.frames; ++k)
     result.truth.push_back(s.truth[static_cast<std::size_t>(k)].has_value());
   result.references = o.references;
+  result.firstFrame = s.firstFrame;
   result.cubeCentre = o.cubeCentre;
   result.cubeEdge = o.cubeEdge;
+  result.cubeInFrontM = o.cubeInFrontM;
+  result.cube = scoringCube(o, s);
   result.shuffleSeed = o.shuffleSeed;
   result.passes = o.passes;
   result.fps = frameRate(s.timestamps);
@@ -367,28 +433,57 @@ GroundTruthBenchmarkResult runGroundTruthBenchmark(const GroundTruthSequence& s,
   std::vector<RigidPose> poses;
   for (int r : o.references) {
     const RigidPose& T = *s.truth[static_cast<std::size_t>(r)];
-    images.push_back({s.frames[static_cast<std::size_t>(r)], "frame " + std::to_string(r)});
+    images.push_back(
+        {s.frames[static_cast<std::size_t>(r)], "frame " + std::to_string(s.firstFrame + r)});
     poses.push_back(T);
     result.referenceDistancesMm.push_back(1000.0 *
                                           (T.cameraCentre() - poses.front().cameraCentre()).norm());
   }
-  const MultiPreparation prepared = MultiReferencePreparer(s.camera, prepareParams)
-                                        .prepare(images, poses, "ground truth of bench-real");
-  result.mapPoints = static_cast<int>(prepared.map.points.size());
-  for (const ReferenceView& v : prepared.map.views) {
-    result.mapKeypoints += static_cast<int>(v.keypoints.keypoints.size());
-    result.mapKeypointPoints += v.keypoints.pointCount();
+  // reftrack's map (the Kalman baseline's too); the peers make their own models.
+  const bool needsMap = std::any_of(o.methods.begin(), o.methods.end(), [](const std::string& m) {
+    return m == "reftrack" || m == "kalman";
+  });
+  std::optional<MultiPreparation> prepared;
+  try {
+    if (needsMap)
+      prepared = MultiReferencePreparer(s.camera, prepareParams)
+                     .prepare(images, poses, "ground truth of bench-real");
+  } catch (const Error& e) {
+    if (!o.mapFailureIsLoss) throw;
+    result.mapError = e.what();
+  }
+  if (prepared) {
+    result.mapPoints = static_cast<int>(prepared->map.points.size());
+    for (const ReferenceView& v : prepared->map.views) {
+      result.mapKeypoints += static_cast<int>(v.keypoints.keypoints.size());
+      result.mapKeypointPoints += v.keypoints.pointCount();
+    }
   }
 
   std::vector<std::unique_ptr<PoseMethod>> methods;
+  // Per method: the poses a per-frame peer gave every frame once, replayed in every order.
+  std::vector<std::optional<PeerPoses>> replayed;
   for (const std::string& name : groundTruthBenchmarkMethods()) {
     if (std::find(o.methods.begin(), o.methods.end(), name) == o.methods.end()) continue;
-    if (name == "reftrack") {
-      methods.push_back(
-          std::make_unique<ReftrackMethod>(prepared.map, params, cubeOn(o.cubeCentre, o.cubeEdge)));
+    replayed.emplace_back();
+    const bool peer = name != "reftrack" && name != "kalman";
+    if (peer && o.peerPoses) {
+      replayed.back() = o.peerPoses(name, o.references);
+      const PeerPoses& poses = *replayed.back();
+      if (poses.poses.size() != s.frames.size() || poses.cpuMs.size() != s.frames.size() ||
+          poses.reasons.size() != s.frames.size())
+        throw Error("bench-real: " + poses.method + " gave " + std::to_string(poses.poses.size()) +
+                    " poses for the " + std::to_string(s.frames.size()) + " frames");
+      result.modelPoints.emplace_back(poses.method, poses.modelPoints);
+      methods.push_back(std::make_unique<NoPoseMethod>(poses.method, "replayed"));
+    } else if (!prepared && (name == "reftrack" || name == "kalman")) {
+      methods.push_back(std::make_unique<NoPoseMethod>(
+          name == "reftrack" ? "reftrack" : "ORB+PnP+Kalman", "no map: " + result.mapError));
+    } else if (name == "reftrack") {
+      methods.push_back(std::make_unique<ReftrackMethod>(prepared->map, params, result.cube));
     } else if (name == "kalman") {
       auto kalman =
-          std::make_unique<KalmanMethod>(prepared.map.pair(0, 1), frameRate(s.timestamps));
+          std::make_unique<KalmanMethod>(prepared->map.pair(0, 1), frameRate(s.timestamps));
       result.modelPoints.emplace_back(kalman->name(), kalman->modelPoints());
       methods.push_back(std::move(kalman));
     } else {
@@ -398,7 +493,7 @@ GroundTruthBenchmarkResult runGroundTruthBenchmark(const GroundTruthSequence& s,
     }
   }
 
-  const std::vector<Eigen::Vector3d> cube = cubeOn(o.cubeCentre, o.cubeEdge);
+  const std::vector<Eigen::Vector3d>& cube = result.cube;
   for (const auto& method : methods)
     for (std::size_t i = 0; i < result.orders.size(); ++i) {
       MethodRun run;
@@ -411,10 +506,19 @@ GroundTruthBenchmarkResult runGroundTruthBenchmark(const GroundTruthSequence& s,
       run.uncertain.assign(static_cast<std::size_t>(result.frames), false);
       result.runs.push_back(std::move(run));
     }
+  // The replayed peers: every order from their one run (its CPU times counted once).
+  for (std::size_t m = 0; m < methods.size(); ++m)
+    for (std::size_t i = 0; replayed[m] && i < result.orders.size(); ++i) {
+      MethodRun& run = result.runs[m * result.orders.size() + i];
+      replayPeerPoses(*replayed[m], s, cube, run);
+      if (progress)
+        progress(run.method + ", " + run.order.name + " order: " +
+                 std::to_string(run.plan.frames.size()) + " frames replayed from its one run");
+    }
   // Each pass runs every method in turn, in every order, so all see the same machine load.
   for (int pass = 0; pass < o.passes; ++pass)
     for (std::size_t m = 0; m < methods.size(); ++m)
-      for (std::size_t i = 0; i < result.orders.size(); ++i) {
+      for (std::size_t i = 0; !replayed[m] && i < result.orders.size(); ++i) {
         PoseMethod& method = *methods[m];
         MethodRun& run = result.runs[m * result.orders.size() + i];
         const auto runStart = std::chrono::steady_clock::now();

@@ -8,10 +8,10 @@
 // anyway; the other orders play their frames as one sequence with no reset). Methods: reftrack
 // (MultiReferenceTracker), SIFT / AKAZE / ORB + solvePnPRansac + solvePnPRefineLM from the same
 // reference frames (PerFramePnpPeer), and ORB + PnP + Kalman (OrbPnpKalmanTracker on the first
-// two references). Score: a cube standing on the world's z = 0 plane (its base centred at
-// cubeCentre, extending to +z) projected with K alone (ideal pinhole): the mean pixel distance of
-// its 8 vertices between the estimated and the true pose. Speed: the thread CPU time of each
-// frame, every pass (the caller sets cv::setNumThreads(1)).
+// two references). Score: a cube (its base centred at cubeCentre in the world, extending to +z;
+// or centred in front of the first reference's camera, scoringCube) projected with K alone (ideal
+// pinhole): the mean pixel distance of its 8 vertices between the estimated and the true pose.
+// Speed: the thread CPU time of each frame, every pass (the caller sets cv::setNumThreads(1)).
 #include <Eigen/Core>
 #include <cstdint>
 #include <functional>
@@ -23,6 +23,7 @@
 
 #include "app/research/sixdof/FrameOrder.hpp"
 #include "app/research/sixdof/GroundTruthSequence.hpp"
+#include "app/research/sixdof/PerFramePeerPoses.hpp"
 #include "engine/config/TrackerParams.hpp"
 #include "engine/reference/ReferencePreparer.hpp"
 
@@ -40,6 +41,21 @@ struct GroundTruthBenchmarkOptions {
   std::vector<int> references;  // frame indices of the reference images (>= 2, distinct)
   Eigen::Vector3d cubeCentre = Eigen::Vector3d::Zero();  // centre of the cube's base (world, m)
   double cubeEdge = 0.1;                                 // metres
+  // > 0: the cube is centred this far (m) in front of the first reference's camera instead, on
+  // its optical axis, its edges along that camera's axes (a scene without a known plane: the
+  // world frame of a depth-camera trajectory is arbitrary); cubeCentre is then not used.
+  double cubeInFrontM = 0.0;
+  // A map the preparation refuses: true, reftrack and the Kalman baseline give no frame a pose
+  // (the reason in their noPose, the message in the result's mapError) and the peers still run;
+  // false: runGroundTruthBenchmark throws.
+  bool mapFailureIsLoss = false;
+  // Set: each per-frame peer named in `methods` (sift, akaze, orb) is not played in every order
+  // and pass: this gives its poses over all the sequence's frames once (computePeerPoses, or a
+  // PeerPoseCache), with the reference indices, and every order replays them (replayPeerPoses:
+  // a per-frame peer gives a frame the same pose in any order; its CPU times are that run's).
+  // Unset: the peers are played like the other methods. Not with away:N orders.
+  std::function<PeerPoses(const std::string& detector, const std::vector<int>& references)>
+      peerPoses;
   int frames = 0;  // frames benchmarked from the start; 0: every frame of the sequence
   int passes = 1;  // passes over the frames for the timing (errors from the first)
   std::uint64_t shuffleSeed = 1;  // of the shuffled orders (shuffled, shuffled-sequence, cuts:N)
@@ -134,8 +150,12 @@ struct GroundTruthBenchmarkResult {
   std::vector<bool> truth;  // per benchmarked frame: has a true pose
   std::vector<int> references;
   std::vector<double> referenceDistancesMm;  // camera centre of reference i from reference 0's
+  int firstFrame = 0;  // the input's index of frame 0 (GroundTruthSequence::firstFrame)
   Eigen::Vector3d cubeCentre = Eigen::Vector3d::Zero();
   double cubeEdge = 0.0;
+  double cubeInFrontM = 0.0;          // as in the options
+  std::vector<Eigen::Vector3d> cube;  // the scored cube's 8 vertices (world)
+  std::string mapError;               // the preparation's refusal (options.mapFailureIsLoss)
   std::uint64_t shuffleSeed = 0;
   int passes = 0;
   double fps = 30.0;  // the sequence's frame rate (its timestamps; 30 when they do not tell)
@@ -175,6 +195,12 @@ void playFrames(PoseMethod& method, const GroundTruthSequence& sequence,
                 const std::vector<Eigen::Vector3d>& cube, bool score, MethodRun& run,
                 const std::vector<cv::Mat>& away = {});
 
+// `peer`'s poses of the frames of run.plan (frame indices of `sequence`) scored against their
+// true poses as playFrames does (first pass): run.poses, errorPx, noPose, and cpuMs (the peer's
+// CPU time of each played frame). Throws reftrack::Error for an away:N plan.
+void replayPeerPoses(const PeerPoses& peer, const GroundTruthSequence& sequence,
+                     const std::vector<Eigen::Vector3d>& cube, MethodRun& run);
+
 // The mean pixel distance of the cube's vertices between `estimate` and `truth` (world->camera),
 // projected with K alone; vertices behind either camera are left out, and a pose that leaves
 // none in front of both is infinitely wrong.
@@ -182,6 +208,14 @@ double cubeErrorPx(const PinholeCamera& camera, const std::vector<Eigen::Vector3
                    const RigidPose& truth, const RigidPose& estimate);
 // The 8 vertices of the cube of `edge` whose base is centred at `baseCentre` on z = 0, up to +z.
 std::vector<Eigen::Vector3d> cubeOn(const Eigen::Vector3d& baseCentre, double edge);
+// The 8 vertices (world) of the cube of `edge` centred `distance` in front of the camera of
+// `worldToCamera` on its optical axis, its edges along the camera's axes.
+std::vector<Eigen::Vector3d> cubeInFrontOf(const RigidPose& worldToCamera, double distance,
+                                           double edge);
+// The scored cube of `options` on `sequence` (cubeOn, or cubeInFrontOf the first reference's
+// true pose); the first reference must have one.
+std::vector<Eigen::Vector3d> scoringCube(const GroundTruthBenchmarkOptions& options,
+                                         const GroundTruthSequence& sequence);
 
 // Throws reftrack::Error when a reference frame is beyond the sequence or has no true pose, when
 // options.frames exceeds the sequence, or when the preparation or a peer's model fails.

@@ -85,7 +85,7 @@ std::string reacquiredLines(const GroundTruthBenchmarkResult& r) {
       for (std::size_t k = 0; k < r.truth.size() && k < ours.errorPx.size(); ++k) {
         const bool peerGood = peer.errorPx[k] <= kWrongPosePx;
         const bool oursGood = ours.errorPx[k] <= kWrongPosePx;
-        if (peerGood && !oursGood) onlyPeer.push_back(static_cast<int>(k));
+        if (peerGood && !oursGood) onlyPeer.push_back(r.firstFrame + static_cast<int>(k));
         onlyOurs += oursGood && !peerGood ? 1 : 0;
       }
       std::string frames;
@@ -124,7 +124,7 @@ std::string awayLine(const MethodRun& run, double fps, const std::string& scene)
 
 // One line of a cuts:N run: per cut its position, the frames either side, the frames needed to
 // re-acquire (k) and the wrong poses until the next cut; then the worst.
-std::string cutsLine(const MethodRun& run) {
+std::string cutsLine(const MethodRun& run, int firstFrame) {
   const std::vector<CutRecovery> cuts = cutRecoveries(run);
   std::string out = textf(
       "%s %s: per cut @position frame->frame: re-acquired within k frames (<= %.1f px), wrong "
@@ -133,7 +133,8 @@ std::string cutsLine(const MethodRun& run) {
   int worst = 0, wrong = 0, never = 0;
   for (std::size_t i = 0; i < cuts.size(); ++i) {
     const CutRecovery& c = cuts[i];
-    out += textf("%s @%zu %d->%d k=%s wrong=%d", i ? "," : "", c.position, c.fromFrame, c.toFrame,
+    out += textf("%s @%zu %d->%d k=%s wrong=%d", i ? "," : "", c.position, firstFrame + c.fromFrame,
+                 firstFrame + c.toFrame,
                  c.framesToReacquire < 0 ? textf("never(%d)", c.segmentFrames).c_str()
                                          : std::to_string(c.framesToReacquire).c_str(),
                  c.wrong);
@@ -154,18 +155,45 @@ const cv::Scalar kColours[] = {{200, 90, 20},  {30, 30, 210},  {40, 160, 40},
 
 }  // namespace
 
+bool usesMap(const GroundTruthBenchmarkResult& r) {
+  return std::any_of(r.runs.begin(), r.runs.end(), [](const MethodRun& run) {
+    return run.method == "reftrack" || run.method == "ORB+PnP+Kalman";
+  });
+}
+
+std::string cubeDescription(const GroundTruthBenchmarkResult& r) {
+  if (r.cubeInFrontM <= 0)
+    return textf("base centre (%.3f, %.3f, %.3f) m, edge %.3f m", r.cubeCentre.x(),
+                 r.cubeCentre.y(), r.cubeCentre.z(), r.cubeEdge);
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& v : r.cube) centre += v / static_cast<double>(r.cube.size());
+  return textf(
+      "centred %.3f m in front of reference frame %d's camera on its optical axis, edges along "
+      "its axes (centre (%.3f, %.3f, %.3f) m in the world), edge %.3f m",
+      r.cubeInFrontM, r.firstFrame + (r.references.empty() ? 0 : r.references.front()), centre.x(),
+      centre.y(), centre.z(), r.cubeEdge);
+}
+
 std::string groundTruthBenchmarkTable(const GroundTruthBenchmarkResult& r) {
   std::string out;
   const int truthFrames = static_cast<int>(std::count(r.truth.begin(), r.truth.end(), true));
-  out += textf("frames: %d of %s (%dx%d), %d with a true pose (%s)\n", r.frames,
+  const std::string range =
+      r.firstFrame > 0 ? textf(" (%d-%d)", r.firstFrame, r.firstFrame + r.frames - 1) : "";
+  out += textf("frames: %d%s of %s (%dx%d), %d with a true pose (%s)\n", r.frames, range.c_str(),
                r.framesDescription.c_str(), r.frameSize.width, r.frameSize.height, truthFrames,
                r.groundTruthDescription.c_str());
   out += "references: frames";
   for (std::size_t i = 0; i < r.references.size(); ++i)
-    out += textf(" %d (%.1f mm from the first)", r.references[i], r.referenceDistancesMm[i]);
-  out +=
-      textf("\nreftrack map: %d points; keypoint layer %d keypoints, %d of them with a 3D point\n",
-            r.mapPoints, r.mapKeypoints, r.mapKeypointPoints);
+    out += textf(" %d (%.1f mm from the first)", r.firstFrame + r.references[i],
+                 r.referenceDistancesMm[i]);
+  if (!usesMap(r))
+    out += "\nreftrack map: not prepared (neither reftrack nor the Kalman baseline ran)\n";
+  else if (r.mapError.empty())
+    out += textf(
+        "\nreftrack map: %d points; keypoint layer %d keypoints, %d of them with a 3D point\n",
+        r.mapPoints, r.mapKeypoints, r.mapKeypointPoints);
+  else
+    out += "\nreftrack map: none, the preparation refused it: " + r.mapError + "\n";
   if (!r.modelPoints.empty()) {
     out += "peers' triangulated points:";
     for (std::size_t i = 0; i < r.modelPoints.size(); ++i)
@@ -173,10 +201,9 @@ std::string groundTruthBenchmarkTable(const GroundTruthBenchmarkResult& r) {
           textf("%s %s %d", i ? "," : "", r.modelPoints[i].first.c_str(), r.modelPoints[i].second);
     out += "\n";
   }
-  out += textf(
-      "cube: base centre (%.3f, %.3f, %.3f) m, edge %.3f m; error: mean distance of its 8 "
-      "vertices projected with K alone, estimated vs true pose (px)\n",
-      r.cubeCentre.x(), r.cubeCentre.y(), r.cubeCentre.z(), r.cubeEdge);
+  out += "cube: " + cubeDescription(r) +
+         "; error: mean distance of its 8 vertices projected with K alone, estimated vs true "
+         "pose (px)\n";
   std::string orders;
   bool shuffles = false;
   for (const FrameOrder& order : r.orders) {
@@ -210,7 +237,7 @@ std::string groundTruthBenchmarkTable(const GroundTruthBenchmarkResult& r) {
                  s.wrong, s.good, s.cpuMedianMs, cell(s.cpuMedianMs / reftrackCpu, 2).c_str());
   }
   for (const MethodRun& run : r.runs)
-    if (run.order.kind == FrameOrderKind::Cuts) out += cutsLine(run);
+    if (run.order.kind == FrameOrderKind::Cuts) out += cutsLine(run, r.firstFrame);
   for (const MethodRun& run : r.runs)
     if (run.order.kind == FrameOrderKind::Away) out += awayLine(run, r.fps, r.awayDescription);
   out += reacquiredLines(r);
@@ -256,7 +283,7 @@ void writeGroundTruthBenchmarkCsv(const GroundTruthBenchmarkResult& r,
     for (const MethodRun& run : r.runs) played.push_back(playedFrames(run.plan, r.frames));
     for (int k = 0; k < r.frames; ++k) {
       const std::size_t frame = static_cast<std::size_t>(k);
-      out << k << ',' << (r.truth[frame] ? 1 : 0);
+      out << r.firstFrame + k << ',' << (r.truth[frame] ? 1 : 0);
       for (std::size_t i = 0; i < r.runs.size(); ++i) {
         out << ',';
         const double e = r.runs[i].errorPx[frame];
@@ -318,7 +345,9 @@ void writeGroundTruthBenchmarkPlot(const GroundTruthBenchmarkResult& r,
   const std::string versus =
       peer ? textf(": reftrack vs %s, the best peer", r.runs[*peer].method.c_str()) : "";
   PlotCanvas plot(textf("Cube error per frame, %s order%s", order.c_str(), versus.c_str()),
-                  textf("frame (%d; gaps: no pose)", r.frames),
+                  r.firstFrame > 0 ? textf("frame (%d-%d; gaps: no pose)", r.firstFrame,
+                                           r.firstFrame + r.frames - 1)
+                                   : textf("frame (%d; gaps: no pose)", r.frames),
                   textf("mean cube vertex error, px (above %.0f drawn at %.0f)", cap, cap),
                   cv::Size(1200, 600));
   for (std::size_t d = 0; d < drawn.size(); ++d) {
@@ -327,7 +356,7 @@ void writeGroundTruthBenchmarkPlot(const GroundTruthBenchmarkResult& r,
     std::vector<double> x, y;
     for (int k = 0; k < r.frames; ++k) {
       if (!played[static_cast<std::size_t>(k)]) continue;
-      x.push_back(k);
+      x.push_back(r.firstFrame + k);
       y.push_back(std::min(run.errorPx[static_cast<std::size_t>(k)], cap));
     }
     plot.addLine(textf("%s (%.1f%% posed, mean %.3f px)", run.method.c_str(),

@@ -26,11 +26,19 @@ inline constexpr double kPlotErrorCapMaxPx = 10.0;
 std::optional<std::size_t> bestPeerRun(const GroundTruthBenchmarkResult& result,
                                        const std::string& order);
 
+// The scored cube in words: "base centre (x, y, z) m, edge E m", or where it stands in front of
+// the first reference's camera.
+std::string cubeDescription(const GroundTruthBenchmarkResult& result);
+
+// Whether a method that needs reftrack's map ran (reftrack, the Kalman baseline): else no map
+// was prepared.
+bool usesMap(const GroundTruthBenchmarkResult& result);
+
 std::string groundTruthBenchmarkTable(const GroundTruthBenchmarkResult& result);
 
 // Header `frame,true_pose,<method>_<order>_px...`, then `<method>_<order>_predicted_px` for the
-// runs with a predicted error (reftrack); one row per frame; an empty cell: no pose (or no
-// prediction); inf: the pose put the whole cube behind the camera.
+// runs with a predicted error (reftrack); one row per frame (frame: the input's index); an empty
+// cell: no pose (or no prediction); inf: the pose put the whole cube behind the camera.
 void writeGroundTruthBenchmarkCsv(const GroundTruthBenchmarkResult& result,
                                   const std::filesystem::path& csv);
 void writeGroundTruthBenchmarkPlot(const GroundTruthBenchmarkResult& result,

@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "app/sources/FrameSourceFactory.hpp"
+#include "app/sources/ImageFolderSource.hpp"
 #include "app/sources/InputCamera.hpp"
 #include "engine/core/Error.hpp"
 #include "engine/dataset/DatasetGroundTruth.hpp"
@@ -63,8 +64,22 @@ GroundTruthSequence loadGroundTruthSequence(const GroundTruthSequenceSpec& spec)
     throw Error("ground-truth file '" + groundTruthSpec + "' not found");
   }
 
+  if (spec.firstFrame < 0) throw Error("the first frame must be >= 0");
   const std::unique_ptr<FrameSource> source = openFrameSource(spec.input);
   s.framesDescription = source->description();
+  s.firstFrame = spec.firstFrame;
+  const std::optional<int> count = source->frameCount();
+  if (spec.firstFrame > 0 && count && spec.firstFrame >= *count)
+    throw Error(s.framesDescription + " holds " + std::to_string(*count) +
+                " frames: none from frame " + std::to_string(spec.firstFrame) + " on");
+  // An image folder seeks exactly (the frames keep their indices and timestamps); a video's seek
+  // may land near the frame, so videos and datasets are read up to it.
+  if (spec.firstFrame > 0 && dynamic_cast<ImageFolderSource*>(source.get()) != nullptr)
+    source->seek(spec.firstFrame);
+  else
+    for (int k = 0; k < spec.firstFrame; ++k)
+      if (!source->next())
+        throw Error(s.framesDescription + " ends before frame " + std::to_string(spec.firstFrame));
   while (spec.frames <= 0 || static_cast<int>(s.frames.size()) < spec.frames) {
     std::optional<Frame> frame = source->next();
     if (!frame) break;
@@ -75,7 +90,10 @@ GroundTruthSequence loadGroundTruthSequence(const GroundTruthSequenceSpec& spec)
     s.timestamps.push_back(frame->timestamp);
     s.frames.push_back(std::move(frame->image));
   }
-  if (s.frames.empty()) throw Error(s.framesDescription + " holds no frames");
+  if (s.frames.empty())
+    throw Error(s.framesDescription + " holds no frames" +
+                (spec.firstFrame > 0 ? " from frame " + std::to_string(spec.firstFrame) + " on"
+                                     : std::string()));
 
   const GroundTruth gt = loadGroundTruth(groundTruthSpec, kMaxGroundTruthGap);
   s.groundTruthDescription = gt.description;

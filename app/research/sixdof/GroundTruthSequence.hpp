@@ -21,13 +21,16 @@ struct GroundTruthSequenceSpec {
   std::string input;        // image folder, glob, video, tum:DIR or euroc:DIR
   std::string camera;       // camera.yml; "" for a euroc: input (its sensor.yaml)
   std::string groundTruth;  // TUM file, tum:DIR or euroc:DIR; "" for the input's own (tum:/euroc:)
-  int frames = 0;           // read the first `frames` frames; 0: all
+  int frames = 0;           // read `frames` frames from firstFrame on; 0: all to the end
+  int firstFrame = 0;       // skip the frames before this one (the input's frame index)
 };
 
 struct GroundTruthSequence {
   std::string framesDescription, cameraDescription, groundTruthDescription;
   PinholeCamera camera;
-  std::vector<cv::Mat> frames;  // BGR, the camera's image size
+  int firstFrame = 0;  // the input's index of frames[0] (spec.firstFrame)
+  std::vector<cv::Mat>
+      frames;  // BGR, the camera's image size; frames[k] is input frame firstFrame + k
   std::vector<double> timestamps;
   std::vector<std::optional<RigidPose>> truth;  // world->camera per frame; none where uncovered
 
@@ -36,7 +39,8 @@ struct GroundTruthSequence {
 
 // Throws reftrack::Error naming what is missing or wrong: an input, camera or ground-truth file
 // that does not exist, no --camera for an input that brings none, no ground truth for an input
-// that brings none, a frame whose size is not the camera's, or ground truth covering no frame.
+// that brings none, a frame whose size is not the camera's, no frame at or after firstFrame, or
+// ground truth covering no frame.
 GroundTruthSequence loadGroundTruthSequence(const GroundTruthSequenceSpec& spec);
 
 }  // namespace reftrack::app

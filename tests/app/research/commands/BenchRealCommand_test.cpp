@@ -288,3 +288,146 @@ TEST(BenchRealCommand, InputModeBadInputIsAClearErrorWithNoOutputs) {
   expectError("bench-real --input " + ok.frames.string() + " --camera " + ok.camera.string(), 2,
               "--ref-frames");
 }
+
+namespace {
+
+// A suite file of 12 frames of the ViSP desk clip (30-41, references 30 and 40, 62 mm apart; the
+// suite's cube) and a clip whose folder is absent from the data root.
+std::filesystem::path tinySuite(const std::filesystem::path& dir) {
+  const auto file = dir / "tiny.yml";
+  std::ofstream(file) << "clips:\n"
+                         "  - name: visp-12\n"
+                         "    folder: visp-desk-apriltags\n"
+                         "    first_frame: 30\n"
+                         "    last_frame: 41\n"
+                         "    references: [30, 40]\n"
+                         "    cube: {edge: 0.1, base_centre: [0.18, 0.12, 0]}\n"
+                         "    wrong_px: 5\n"
+                         "  - name: elsewhere\n"
+                         "    folder: no-such-clip\n"
+                         "    references: [0, 10]\n"
+                         "    cube: {edge: 0.08, in_front_of_reference: {distance: 1.0}}\n"
+                         "    wrong_px: 20\n";
+  return file;
+}
+
+// The suite table's row of (clip, order, method): the 10 fields after them, or none.
+std::vector<std::string> suiteRow(const std::string& out, const std::string& clip,
+                                  const std::string& order, const std::string& method) {
+  std::istringstream lines(out);
+  for (std::string line; std::getline(lines, line);) {
+    std::istringstream in(line);
+    std::vector<std::string> fields;
+    for (std::string f; in >> f;) fields.push_back(f);
+    if (fields.size() == 13 && fields[0] == clip && fields[1] == order && fields[2] == method)
+      return {fields.begin() + 3, fields.end()};
+  }
+  return {};
+}
+
+}  // namespace
+
+// `bench-real --suite` end to end on 12 real frames, reftrack and the SIFT peer, in order and
+// shuffled as one sequence: one table with a row per order and method, the skipped clip named,
+// progress on stderr, the last line the worst clip's ratio against its best peer, the files under
+// --out. A second run with the same --peer-cache takes SIFT's poses from the cache: the same rows
+// (ms/frame included, those of the run that filled it). The figures are not bounded here (the
+// engine is being changed; the suite is how they are judged).
+TEST(BenchRealCommand, SuiteRunsEveryClipIntoOneTable) {
+  const auto data = sharedDataDir();
+  if (!data || !std::filesystem::is_directory(*data / "visp-desk-apriltags" / "frames"))
+    GTEST_SKIP() << "../shared/data/visp-desk-apriltags not available (the shared recordings)";
+  const auto dir = freshTempDir("BenchRealCommandSuite");
+  const std::string args = "bench-real --suite " + tinySuite(dir).string() + " --data " +
+                           data->string() + " --methods reftrack,sift --peer-cache " +
+                           (dir / "cache").string();
+  const auto r = runReftrack(args + " --out " + (dir / "out").string(), dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.err.find("skipped clip elsewhere: its folder '"), std::string::npos) << r.err;
+  EXPECT_NE(r.out.find("skipped: elsewhere: its folder '"), std::string::npos) << r.out;
+  EXPECT_NE(r.err.find("clip 1 of 1 (visp-12): SIFT+PnP, every frame once (replayed in every "
+                       "order): 12 of 12 frames done"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("clip 1 of 1 (visp-12): pass 1/1: reftrack, shuffled-sequence order: 12 "
+                       "frames in "),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.out.find("visp-12: frames 30-41 (12 with a true pose), 640x480; references 30, 40 ("),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("(poses computed)"), std::string::npos) << r.out;
+  for (const char* order : {"sequence", "shuffled-sequence"})
+    for (const char* method : {"reftrack", "SIFT+PnP"}) {
+      const std::vector<std::string> row = suiteRow(r.out, "visp-12", order, method);
+      ASSERT_EQ(row.size(), 10u) << order << " " << method << "\n" << r.out;
+      EXPECT_EQ(row[0], "12");
+      EXPECT_EQ(row[7], "5");  // the clip's wrong_px
+    }
+  EXPECT_EQ(suiteRow(r.out, "visp-12", "sequence", "SIFT+PnP"),
+            suiteRow(r.out, "visp-12", "shuffled-sequence", "SIFT+PnP"));
+  const std::string lastLine = "worst clip: visp-12 (";
+  const std::size_t last = r.out.rfind(lastLine);
+  ASSERT_NE(last, std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("): reftrack mean ", last), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(" / its best peer SIFT+PnP ", last), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("worst clip in shuffled-sequence order: visp-12"), std::string::npos);
+  for (const char* file :
+       {"table.txt", "visp-12/table.txt", "visp-12/cube_errors.csv", "visp-12/cube_errors.png"})
+    EXPECT_TRUE(std::filesystem::is_regular_file(dir / "out" / file)) << file;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out" / "elsewhere"));
+  EXPECT_EQ(readTextFile(dir / "out" / "table.txt"), r.out.substr(0, r.out.find("wrote the")));
+
+  const auto again = runReftrack(args, dir);
+  ASSERT_EQ(again.exitCode, 0) << again.err;
+  EXPECT_NE(again.err.find("SIFT+PnP: cached in '" + (dir / "cache").string()), std::string::npos)
+      << again.err;
+  EXPECT_EQ(again.err.find("frames done"), std::string::npos) << again.err;
+  EXPECT_NE(again.out.find("(poses from the cache)"), std::string::npos) << again.out;
+  for (const char* order : {"sequence", "shuffled-sequence"})
+    EXPECT_EQ(suiteRow(again.out, "visp-12", order, "SIFT+PnP"),
+              suiteRow(r.out, "visp-12", order, "SIFT+PnP"))
+        << order;
+}
+
+// Bad input to --suite: one clear message, exit 1, no output folder; usage errors exit 2.
+TEST(BenchRealCommand, SuiteBadInputIsAClearErrorWithNoOutputs) {
+  const auto dir = freshTempDir("BenchRealCommandSuiteBad");
+  const auto data = dir / "data";
+  std::filesystem::create_directories(data / "visp-desk-apriltags");
+  const auto suite = tinySuite(dir);
+  auto expectError = [&](const std::string& args, int exitCode, const std::string& message) {
+    const auto r = runReftrack("bench-real " + args + " --out " + (dir / "out").string(), dir);
+    EXPECT_EQ(r.exitCode, exitCode) << args << "\n" << r.err;
+    EXPECT_NE(r.err.find(message), std::string::npos) << args << "\n" << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "out")) << args;
+  };
+  expectError("--suite " + (dir / "none.yml").string(), 1,
+              "suite file '" + (dir / "none.yml").string() + "' not found");
+  std::ofstream(dir / "typo.yml") << "clips:\n  - name: a\n    folder: a\n    refs: [0, 4]\n";
+  expectError(
+      "--suite " + (dir / "typo.yml").string(), 1,
+      "suite file '" + (dir / "typo.yml").string() + "': line 4: clips[0].refs: unknown key");
+  std::ofstream(dir / "outside.yml")
+      << "clips:\n  - name: a\n    folder: a\n    last_frame: 30\n    references: [0, 40]\n"
+         "    cube: {edge: 0.1, base_centre: [0, 0, 0]}\n    wrong_px: 5\n";
+  expectError("--suite " + (dir / "outside.yml").string(), 1,
+              "line 5: clips[0].references[1]: reference frame 40 is outside the clip's frames "
+              "0..30");
+  expectError("--suite " + suite.string() + " --data " + (dir / "nodata").string(), 1,
+              "data folder '" + (dir / "nodata").string() + "' not found");
+  expectError(
+      "--suite " + suite.string() + " --data " + data.string() + " --clips elsewhere", 1,
+      "none of the suite's clips was found in '" + data.string() + "'; elsewhere: its folder '");
+  expectError("--suite " + suite.string() + " --data " + data.string() + " --clips visp", 1,
+              "has no clip 'visp' (its clips: visp-12, elsewhere)");
+  expectError("--suite " + suite.string() + " --data " + data.string(), 1,
+              "clip 'visp-12' (suite file '" + suite.string() + "', line 2): its frames '");
+  // Usage errors, before anything is read.
+  expectError("--suite " + suite.string() + " --input frames", 2, "excludes");
+  expectError("--suite " + suite.string() + " --methods reftrack,surf", 2, "unknown method 'surf'");
+  expectError("--suite " + suite.string() + " --order sequence,away:3", 2, "--order away:3");
+  expectError("--suite " + suite.string() + " --frames 10", 2, "excludes");
+  expectError("--peer-cache " + (dir / "cache").string(), 2, "requires --suite");
+  expectError("--methods reftrack", 2, "needs --input or --suite");
+}

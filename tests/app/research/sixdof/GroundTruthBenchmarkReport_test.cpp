@@ -236,6 +236,42 @@ TEST(GroundTruthBenchmarkReport, TheBestPeerIsTheMostAccurateOfThoseThatPoseNear
   EXPECT_EQ(bestPeerRun(r, "sequence"), std::optional<std::size_t>(4));
 }
 
+// A clip read from frame 180 (`bench-real --suite`): the table, the CSV and the cut lines name
+// the input's frames; a cube in front of the first reference is described as such; a map the
+// preparation refused, or none needed, is said so.
+TEST(GroundTruthBenchmarkReport, ARangeOfFramesIsNumberedAsInTheInput) {
+  GroundTruthBenchmarkResult r = smallResult();
+  r.firstFrame = 180;
+  r.cubeInFrontM = 1.0;
+  r.cube =
+      cubeInFrontOf(RigidPose(Eigen::Matrix3d::Identity(), Eigen::Vector3d(0.5, 0, 0)), 1.0, 0.1);
+  std::string table = groundTruthBenchmarkTable(r);
+  EXPECT_NE(table.find("frames: 4 (180-183) of images 'frames' (4 frames)"), std::string::npos)
+      << table;
+  EXPECT_NE(table.find("references: frames 180 (0.0 mm from the first) 182 (41.5 mm"),
+            std::string::npos)
+      << table;
+  EXPECT_NE(table.find("cube: centred 1.000 m in front of reference frame 180's camera on its "
+                       "optical axis, edges along its axes (centre (-0.500, 0.000, 1.000) m in "
+                       "the world), edge 0.100 m; error: "),
+            std::string::npos)
+      << table;
+  const auto dir = test::freshTempDir("GroundTruthBenchmarkReportRange");
+  writeGroundTruthBenchmarkCsv(r, dir / "e.csv");
+  const std::vector<std::string> csv = linesOf(test::readTextFile(dir / "e.csv"));
+  ASSERT_EQ(csv.size(), 5u);
+  EXPECT_EQ(csv[1].rfind("180,1,", 0), 0u) << csv[1];
+  EXPECT_EQ(csv[4].rfind("183,0,", 0), 0u) << csv[4];
+  r.mapError = "only 12 map points";
+  table = groundTruthBenchmarkTable(r);
+  EXPECT_NE(table.find("reftrack map: none, the preparation refused it: only 12 map points\n"),
+            std::string::npos)
+      << table;
+  r.runs.erase(r.runs.begin(), r.runs.begin() + 2);  // no reftrack run
+  EXPECT_FALSE(usesMap(r));
+  EXPECT_NE(groundTruthBenchmarkTable(r).find("reftrack map: not prepared"), std::string::npos);
+}
+
 TEST(GroundTruthBenchmarkReport, AnUnusableFolderIsAnError) {
   const auto dir = test::freshTempDir("GroundTruthBenchmarkReportBad");
   std::ofstream(dir / "file") << "x";

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <opencv2/calib3d.hpp>
 #include <set>
 
@@ -324,6 +325,126 @@ TEST(GroundTruthBenchmark, OptionsCheckNamesTheBadOption) {
   EXPECT_NE(message(bad).find("--order: 'cuts:1'"), std::string::npos);
   bad.orders = {};
   EXPECT_NE(message(bad).find("--order names no order"), std::string::npos);
+}
+
+// The cube in front of a reference: centred `distance` along that camera's optical axis (its
+// centre projects to the principal point), its edges along the camera's axes; scoringCube takes
+// the first reference's true pose, and names the input's frame when it has none.
+TEST(GroundTruthBenchmark, CubeInFrontOfTheReferenceStandsOnItsOpticalAxis) {
+  const RigidPose reference = lookingDown({0.02, -0.03, 0.1}, 0.4);
+  const std::vector<Eigen::Vector3d> cube = cubeInFrontOf(reference, 1.0, 0.08);
+  ASSERT_EQ(cube.size(), 8u);
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& v : cube) {
+    const Eigen::Vector3d c = reference * v;  // in the reference camera's frame
+    EXPECT_NEAR(std::abs(c.x()), 0.04, 1e-12);
+    EXPECT_NEAR(std::abs(c.y()), 0.04, 1e-12);
+    EXPECT_NEAR(std::abs(c.z() - 1.0), 0.04, 1e-12);
+    centre += c / 8.0;
+  }
+  const Eigen::Vector2d principal = smallCamera().project(centre);
+  EXPECT_NEAR(principal.x(), 355.2, 1e-9);
+  EXPECT_NEAR(principal.y(), 250.3, 1e-9);
+
+  GroundTruthSequence s;
+  s.firstFrame = 200;
+  s.truth = {std::nullopt, reference};
+  GroundTruthBenchmarkOptions o;
+  o.references = {1, 0};
+  o.cubeEdge = 0.08;
+  o.cubeInFrontM = 1.0;
+  const std::vector<Eigen::Vector3d> scored = scoringCube(o, s);
+  for (std::size_t i = 0; i < 8; ++i) EXPECT_LT((scored[i] - cube[i]).norm(), 1e-15) << i;
+  o.references = {0, 1};
+  const std::string m = test::errorMessage([&] { scoringCube(o, s); });
+  EXPECT_NE(m.find("in front of reference frame 200, which has no true pose"), std::string::npos)
+      << m;
+  o.cubeInFrontM = 0.0;  // on the world's z = 0 plane instead
+  o.cubeCentre = {0.1, 0.2, 0.0};
+  EXPECT_EQ(scoringCube(o, s), cubeOn({0.1, 0.2, 0.0}, 0.08));
+  o.cubeInFrontM = 0.03;  // reaching behind the camera
+  EXPECT_NE(test::errorMessage([&] { o.check(); }).find("reaches behind the camera"),
+            std::string::npos);
+}
+
+// Replayed peers and a refused map (`bench-real --suite`): the peer's poses, given once by
+// options.peerPoses, score every order alike (its CPU times counted once per order); a map the
+// preparation refuses (blank frames) leaves reftrack without a pose on every frame, the reason
+// given, instead of ending the benchmark.
+TEST(GroundTruthBenchmark, ReplayedPeersAndARefusedMap) {
+  GroundTruthSequence s;
+  s.framesDescription = "blank frames";
+  s.groundTruthDescription = "made up";
+  s.camera = smallCamera();
+  s.firstFrame = 10;
+  for (int k = 0; k < 4; ++k) {
+    const double grey = 80 + 10 * k;  // blank, but not the same image twice
+    s.frames.emplace_back(480, 752, CV_8UC3, cv::Scalar(grey, grey, grey));
+    s.timestamps.push_back((10 + k) / 30.0);
+    s.truth.push_back(lookingDown({0.01 * k, 0, 0}, 0));
+  }
+  s.truth[3].reset();  // no true pose: not scored
+  GroundTruthBenchmarkOptions o;
+  o.references = {0, 2};
+  o.methods = {"reftrack", "sift"};
+  o.orders = {"sequence", "shuffled-sequence"};
+  o.mapFailureIsLoss = true;
+  int calls = 0;
+  o.peerPoses = [&](const std::string& detector, const std::vector<int>& references) {
+    ++calls;
+    EXPECT_EQ(detector, "sift");
+    EXPECT_EQ(references, o.references);
+    PeerPoses p;
+    p.method = "SIFT+PnP";
+    p.modelPoints = 321;
+    p.poses = {s.truth[0], std::nullopt, lookingDown({0.023, 0.001, 0}, 0.002), s.truth[0]};
+    p.reasons = {"", "too few PnP inliers", "", ""};
+    p.cpuMs = {1.0, 2.0, 3.0, 4.0};
+    return p;
+  };
+  const GroundTruthBenchmarkResult r =
+      runGroundTruthBenchmark(s, o, TrackerParams{}, ReferencePreparerParams{});
+  EXPECT_EQ(calls, 1);
+  EXPECT_NE(r.mapError.find("map points"), std::string::npos) << r.mapError;
+  EXPECT_EQ(r.firstFrame, 10);
+  ASSERT_EQ(r.modelPoints.size(), 1u);
+  EXPECT_EQ(r.modelPoints[0], (std::pair<std::string, int>{"SIFT+PnP", 321}));
+  ASSERT_EQ(r.runs.size(), 4u);
+  const std::vector<Eigen::Vector3d> cube = cubeOn(Eigen::Vector3d::Zero(), 0.1);
+  const double third =
+      cubeErrorPx(s.camera, cube, *s.truth[2], lookingDown({0.023, 0.001, 0}, 0.002));
+  EXPECT_GT(third, 1.0);
+  for (const MethodRun& run : r.runs) {
+    if (run.method == "reftrack") {
+      ASSERT_EQ(run.noPose.size(), 1u) << run.order.name;
+      EXPECT_EQ(run.noPose.begin()->first, "no map: " + r.mapError);
+      EXPECT_EQ(run.noPose.begin()->second, 3);  // the frames with a true pose
+      EXPECT_EQ(summarise(run, r.truth).posed, 0);
+      continue;
+    }
+    EXPECT_EQ(run.method, "SIFT+PnP");
+    EXPECT_DOUBLE_EQ(run.errorPx[0], 0.0) << run.order.name;
+    EXPECT_TRUE(std::isnan(run.errorPx[1]));
+    EXPECT_DOUBLE_EQ(run.errorPx[2], third);
+    EXPECT_TRUE(std::isnan(run.errorPx[3]));  // posed, but no truth to score it against
+    ASSERT_TRUE(run.poses[3]);
+    EXPECT_EQ(run.noPose, (std::map<std::string, int>{{"too few PnP inliers", 1}}));
+    std::vector<double> cpu = run.cpuMs;
+    std::sort(cpu.begin(), cpu.end());
+    EXPECT_EQ(cpu, (std::vector<double>{1.0, 2.0, 3.0, 4.0})) << run.order.name;
+  }
+  // The order the peer replays in is the order's own.
+  EXPECT_EQ(r.runs[3].plan.frames, planFrames(parseFrameOrder("shuffled-sequence"), 4, 1).frames);
+  // Without mapFailureIsLoss the refusal ends the benchmark; replayed peers take no away:N order.
+  o.mapFailureIsLoss = false;
+  EXPECT_NE(test::errorMessage([&] {
+              runGroundTruthBenchmark(s, o, TrackerParams{}, ReferencePreparerParams{});
+            }).find("map points"),
+            std::string::npos);
+  o.orders = {"away:2"};
+  o.awayDescription = "elsewhere";
+  EXPECT_NE(test::errorMessage([&] { o.check(); }).find("replayed poses cover the sequence's"),
+            std::string::npos);
 }
 
 // A reference frame needs a true pose, and must be in the sequence: checked before the map.

@@ -86,6 +86,35 @@ TEST(GroundTruthSequence, ReadsAnImageFolderWithItsCameraAndTumGroundTruth) {
   EXPECT_EQ(loadGroundTruthSequence(first3).frames.size(), 3u);
 }
 
+// A range of frames (firstFrame, frames): frames[k] is the input's frame firstFrame + k, with
+// that frame's time and true pose (image folder: an exact seek; the frames differ, so a frame
+// read from the wrong place would not equal the image on disk).
+TEST(GroundTruthSequence, ReadsARangeOfFramesWithTheirOwnTimesAndPoses) {
+  const FolderFixture f("GroundTruthSequence_range", 6, 0, 5);
+  GroundTruthSequenceSpec range = f.spec();
+  range.firstFrame = 2;
+  range.frames = 3;
+  const GroundTruthSequence s = loadGroundTruthSequence(range);
+  EXPECT_EQ(s.firstFrame, 2);
+  ASSERT_EQ(s.frames.size(), 3u);
+  ASSERT_EQ(s.truth.size(), 3u);
+  for (int k = 0; k < 3; ++k) {
+    const std::size_t i = static_cast<std::size_t>(k);
+    EXPECT_NEAR(s.timestamps[i], (2 + k) / 30.0, 1e-12) << k;
+    ASSERT_TRUE(s.truth[i]) << k;
+    EXPECT_LT(RigidPose::translationDistance(*s.truth[i], poseOf(2 + k)), 1e-6) << k;
+    char file[32];
+    std::snprintf(file, sizeof file, "%06d.png", 2 + k);
+    const cv::Mat onDisk = cv::imread((f.frames / file).string(), cv::IMREAD_COLOR);
+    EXPECT_EQ(cv::norm(s.frames[i], onDisk, cv::NORM_INF), 0.0) << k;
+  }
+  range.frames = 0;  // to the end
+  EXPECT_EQ(loadGroundTruthSequence(range).frames.size(), 4u);
+  range.firstFrame = 6;
+  const std::string m = errorMessage([&] { loadGroundTruthSequence(range); });
+  EXPECT_NE(m.find("holds 6 frames: none from frame 6 on"), std::string::npos) << m;
+}
+
 // tum:DIR brings its own ground truth (its rgb.txt times), so --gt may be left out.
 TEST(GroundTruthSequence, TumDatasetBringsItsGroundTruth) {
   const auto dir = test::freshTempDir("GroundTruthSequence_tum");
