@@ -115,6 +115,17 @@ void printPair(const ReferencePairReport& r, const std::vector<std::string>& nam
         r.merged ? "" : ", too few to merge", s.droppedAmbiguous, s.droppedPeakOffset,
         s.droppedBehindCamera, s.droppedOutsideDepthRange, s.droppedLowParallax,
         s.droppedReprojection);
+    if (s.poseFit)
+      std::printf(
+          "  poses against the images: %d probe pairs, %d fit the images' own relative pose "
+          "(rotation %.2f deg, translation direction %.2f deg from the given); their median "
+          "distance to the epipolar lines: %.2f px under the given poses, %.2f px under the "
+          "images' pose: %s\n",
+          s.probeMatches, s.poseFit->inliers, s.poseFit->rotationChangeDeg,
+          s.poseFit->translationDirectionChangeDeg, s.poseFit->givenMedianPx,
+          s.poseFit->fittedMedianPx,
+          s.posesDisagree ? "they disagree, matched along the images' lines"
+                          : "the given poses agree with the images");
   }
   std::fflush(stdout);
 }
