@@ -100,10 +100,10 @@ std::vector<std::string> imagesInFolder(const std::string& folder) {
 
 void printPair(const ReferencePairReport& r, const std::vector<std::string>& names) {
   const EpipolarMatchStats& s = r.matching;
-  std::printf("pair %d-%d (%s, %s): baseline %.1f mm, view angle %.1f deg: ", r.a, r.b,
+  std::printf("pair %d-%d (%s, %s)%s: baseline %.1f mm, view angle %.1f deg: ", r.a, r.b,
               names[static_cast<std::size_t>(r.a)].c_str(),
-              names[static_cast<std::size_t>(r.b)].c_str(), r.baselineMetres * 1000.0,
-              r.viewAngleDeg);
+              names[static_cast<std::size_t>(r.b)].c_str(),
+              r.denserCorners ? ", denser corners" : "", r.baselineMetres * 1000.0, r.viewAngleDeg);
   if (!r.matched) {
     std::printf("skipped (%s)\n", r.skipped.c_str());
   } else {
@@ -115,6 +115,17 @@ void printPair(const ReferencePairReport& r, const std::vector<std::string>& nam
         r.merged ? "" : ", too few to merge", s.droppedAmbiguous, s.droppedPeakOffset,
         s.droppedBehindCamera, s.droppedOutsideDepthRange, s.droppedLowParallax,
         s.droppedReprojection);
+    if (s.poseFit)
+      std::printf(
+          "  poses against the images: %d probe pairs, %d fit the images' own relative pose "
+          "(rotation %.2f deg, translation direction %.2f deg from the given); their median "
+          "distance to the epipolar lines: %.2f px under the given poses, %.2f px under the "
+          "images' pose: %s\n",
+          s.probeMatches, s.poseFit->inliers, s.poseFit->rotationChangeDeg,
+          s.poseFit->translationDirectionChangeDeg, s.poseFit->givenMedianPx,
+          s.poseFit->fittedMedianPx,
+          s.posesDisagree ? "they disagree, matched along the images' lines"
+                          : "the given poses agree with the images");
   }
   std::fflush(stdout);
 }
@@ -143,6 +154,13 @@ void printSummary(const MultiPreparation& p, const std::vector<std::string>& nam
   }
   std::printf("reprojection RMS of the kept points: %.3f px over %d pairwise matches\n",
               kept > 0 ? std::sqrt(sq / kept) : 0.0, kept);
+  if (r.pointsBeforeDenserCorners >= 0)
+    std::printf(
+        "the references' corners gave %d map points (fewer than preparation.target_points): "
+        "with denser corners %d; kept the %s\n",
+        r.pointsBeforeDenserCorners,
+        r.denserCorners ? static_cast<int>(p.map.points.size()) : r.denserCornersGave,
+        r.denserCorners ? "denser corners' map" : "first map");
   std::printf("map points: %zu; seen by", p.map.points.size());
   for (std::size_t k = 2; k < r.observationHistogram.size(); ++k)
     std::printf(" %zu references: %d%s", k, r.observationHistogram[k],

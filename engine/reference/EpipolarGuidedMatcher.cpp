@@ -9,6 +9,7 @@
 #include "engine/core/Error.hpp"
 #include "engine/geometry/FundamentalMatrix.hpp"
 #include "engine/matching/NccCorrelation.hpp"
+#include "engine/reference/EpipolarPoseFit.hpp"
 #include "engine/reference/TwoViewTriangulator.hpp"
 
 namespace reftrack {
@@ -92,6 +93,9 @@ void EpipolarMatcherParams::fields(Self& p, const Field& field) {
   field("max_depth_m", p.maxDepthMetres, DepthBeyond{p.minDepthMetres});
   field("min_parallax_deg", p.minParallaxDeg, Range{0.0, 90.0});
   field("max_reprojection_error_px", p.maxReprojectionErrorPx, Range{1e-3, 1000.0});
+  field("probe_epipolar_distance_px", p.probeEpipolarDistancePx, Range{0.0, 1000.0});
+  field("pose_disagreement_px", p.poseDisagreementPx, Range{0.0, 1000.0});
+  field("pose_disagreement_ratio", p.poseDisagreementRatio, Range{1.0, 1000.0});
 }
 
 template struct ParamSection<EpipolarMatcherParams>;
@@ -148,6 +152,58 @@ double EpipolarGuidedMatcher::epipolarDistance(const Eigen::Vector2d& pA,
   return std::abs(line.dot(pB.homogeneous())) / line.head<2>().norm();
 }
 
+namespace {
+
+// One (A corner, B corner) pair within the probe band that passed the depth gate: its best warped
+// NCC over the plane hypotheses and that hypothesis' local map.
+struct ScoredCandidate {
+  int a, b;
+  float score;
+  cv::Matx22f map;
+};
+
+// Mutual best pairs (score >= minScore) among the candidates `admitted` lets through, with the
+// two best scores of each corner over its admitted candidates (the ambiguity test).
+struct MutualSelection {
+  std::vector<int> bestOfA, bestOfB;
+  std::vector<float> bestScoreA, bestScoreB, secondScoreA, secondScoreB;
+  std::vector<cv::Matx22f> bestMapA;
+};
+
+template <class Admit>
+MutualSelection selectMutual(const std::vector<ScoredCandidate>& candidates, int nA, int nB,
+                             const Admit& admitted, int& admittedCount) {
+  MutualSelection s;
+  s.bestOfA.assign(static_cast<std::size_t>(nA), -1);
+  s.bestOfB.assign(static_cast<std::size_t>(nB), -1);
+  s.bestScoreA.assign(static_cast<std::size_t>(nA), -2.0f);
+  s.bestScoreB.assign(static_cast<std::size_t>(nB), -2.0f);
+  s.secondScoreA.assign(static_cast<std::size_t>(nA), -2.0f);
+  s.secondScoreB.assign(static_cast<std::size_t>(nB), -2.0f);
+  s.bestMapA.assign(static_cast<std::size_t>(nA), cv::Matx22f::eye());
+  const auto offer = [](float score, int other, int& best, float& bestScore, float& second) {
+    if (score > bestScore) {
+      second = bestScore;
+      bestScore = score;
+      best = other;
+    } else if (score > second) {
+      second = score;
+    }
+  };
+  admittedCount = 0;
+  for (const ScoredCandidate& c : candidates) {
+    if (!admitted(c)) continue;
+    ++admittedCount;
+    const std::size_t a = static_cast<std::size_t>(c.a), b = static_cast<std::size_t>(c.b);
+    if (c.score > s.bestScoreA[a]) s.bestMapA[a] = c.map;
+    offer(c.score, c.b, s.bestOfA[a], s.bestScoreA[a], s.secondScoreA[a]);
+    offer(c.score, c.a, s.bestOfB[b], s.bestScoreB[b], s.secondScoreB[b]);
+  }
+  return s;
+}
+
+}  // namespace
+
 EpipolarMatchResult EpipolarGuidedMatcher::match(const cv::Mat& grayA,
                                                  const std::vector<cv::Point2f>& cornersA,
                                                  const cv::Mat& grayB,
@@ -168,23 +224,18 @@ EpipolarMatchResult EpipolarGuidedMatcher::match(const cv::Mat& grayA,
       grayA, cornersA, std::vector<cv::Matx22f>(cornersA.size(), cv::Matx22f::eye()),
       params_.halfWindow);
   const TwoViewTriangulator triangulator(camera_.K(), T_AB_);
-
-  // Best candidate (score >= minScore) of every corner on either side.
   const int nA = stats.cornersA, nB = stats.cornersB;
-  std::vector<int> bestOfA(nA, -1), bestOfB(nB, -1);
-  std::vector<float> bestScoreA(nA, -2.0f), bestScoreB(nB, -2.0f);
-  std::vector<cv::Matx22f> bestMapA(nA);  // the winning plane hypothesis of A's best candidate
-  // The two best scores of every corner, over all its candidates on the other side.
-  std::vector<float> secondScoreA(nA, -2.0f), secondScoreB(nB, -2.0f);
-  const auto offer = [](float score, int other, int& best, float& bestScore, float& second) {
-    if (score > bestScore) {
-      second = bestScore;
-      bestScore = score;
-      best = other;
-    } else if (score > second) {
-      second = score;
-    }
+
+  // Every pair within the band (the probe's, when it is wider than the gate) and the depth range,
+  // scored once: the best NCC of B's window warped by each plane hypothesis.
+  const bool probing = params_.probeEpipolarDistancePx > params_.maxEpipolarDistancePx;
+  const double band = probing ? params_.probeEpipolarDistancePx : params_.maxEpipolarDistancePx;
+  const auto inDepthRange = [&](const Eigen::Vector3d& P, const RigidPose& T_AB) {
+    return P.allFinite() && P.z() >= params_.minDepthMetres && P.z() <= params_.maxDepthMetres &&
+           (T_AB * P).z() > 0.0;
   };
+  std::vector<ScoredCandidate> candidates;
+  std::vector<double> givenDistance;  // of each candidate, to A's line under the given poses
   for (int a = 0; a < nA; ++a) {
     if (!patchesA.valid(a)) continue;
     Eigen::Vector3d line = F_ * uA[a].homogeneous();
@@ -192,12 +243,10 @@ EpipolarMatchResult EpipolarGuidedMatcher::match(const cv::Mat& grayA,
     if (norm < 1e-12) continue;  // pA is the epipole: no line to search along
     line /= norm;
     for (int b = 0; b < nB; ++b) {
-      if (std::abs(line.dot(uB[b].homogeneous())) > params_.maxEpipolarDistancePx) continue;
+      const double d = std::abs(line.dot(uB[b].homogeneous()));
+      if (d > band) continue;
       const Eigen::Vector3d P = triangulator.linear(uA[a], uB[b]);
-      if (!P.allFinite() || P.z() < params_.minDepthMetres || P.z() > params_.maxDepthMetres ||
-          (T_AB_ * P).z() <= 0.0)
-        continue;
-      ++stats.candidatePairs;
+      if (!inDepthRange(P, T_AB_)) continue;
       const std::vector<cv::Matx22f> maps = localMapsAtoB(uA[a], P);
       const NccPatches warpedB = NccPatches::warped(
           grayB, std::vector<cv::Point2f>(maps.size(), cornersB[b]), maps, params_.halfWindow);
@@ -210,20 +259,109 @@ EpipolarMatchResult EpipolarGuidedMatcher::match(const cv::Mat& grayA,
           bestHypothesis = h;
         }
       }
-      if (score > bestScoreA[a]) bestMapA[a] = maps[static_cast<size_t>(bestHypothesis)];
-      offer(score, b, bestOfA[a], bestScoreA[a], secondScoreA[a]);
-      offer(score, a, bestOfB[b], bestScoreB[b], secondScoreB[b]);
+      candidates.push_back({a, b, score, maps[static_cast<size_t>(bestHypothesis)]});
+      givenDistance.push_back(d);
     }
   }
+  const auto candidateIndex = [&](const ScoredCandidate& c) {
+    return static_cast<std::size_t>(&c - candidates.data());
+  };
+
+  // The sub-pixel correlation peak in B of A's corner `a` matched to B's corner `b` (nullopt:
+  // more than maxPeakOffsetPx from the corner, or outside the image), distorted pixel.
+  const int climbSteps = static_cast<int>(std::ceil(params_.maxPeakOffsetPx));
+  struct Peak {
+    cv::Point2f pixel;  // distorted, on B's image grid
+    Eigen::Vector2d undistorted;
+  };
+  const auto peakOf = [&](int a, int b, const cv::Matx22f& map) -> std::optional<Peak> {
+    const std::optional<Eigen::Vector2d> offset =
+        correlationPeakOffset(patchesA, a, grayB, cornersB[b], map, climbSteps);
+    if (!offset || offset->norm() > params_.maxPeakOffsetPx) return std::nullopt;
+    const cv::Point2f pixel(cornersB[b].x + static_cast<float>(offset->x()),
+                            cornersB[b].y + static_cast<float>(offset->y()));
+    if (pixel.x < -0.5f || pixel.y < -0.5f || pixel.x > grayB.cols - 0.5f ||
+        pixel.y > grayB.rows - 0.5f)
+      return std::nullopt;
+    // Undistorted as a pixel of its own (adding the offset to B's undistorted corner is the same
+    // only without distortion, where the sum is kept in double precision).
+    Eigen::Vector2d u = uB[b] + *offset;
+    if (camera_.hasDistortion()) {
+      const cv::Point2f p = camera_.undistortPixels({pixel}).front();
+      u = Eigen::Vector2d(p.x, p.y);
+    }
+    return Peak{pixel, u};
+  };
+
+  // The probe: do the given poses agree with the images? The unambiguous mutual best pairs of the
+  // wide band, at their correlation peaks, against the relative pose they give themselves.
+  RigidPose searchT_AB = T_AB_;
+  if (probing) {
+    int admitted = 0;
+    const MutualSelection probe = selectMutual(
+        candidates, nA, nB, [](const ScoredCandidate&) { return true; }, admitted);
+    std::vector<Eigen::Vector2d> pa, pb;
+    for (int a = 0; a < nA; ++a) {
+      const std::size_t ia = static_cast<std::size_t>(a);
+      const int b = probe.bestOfA[ia];
+      if (b < 0 || probe.bestOfB[static_cast<std::size_t>(b)] != a ||
+          probe.bestScoreA[ia] < params_.minScore ||
+          probe.bestScoreA[ia] - std::max(probe.secondScoreA[ia],
+                                          probe.secondScoreB[static_cast<std::size_t>(b)]) <
+              params_.minScoreMargin)
+        continue;
+      const std::optional<Peak> peak = peakOf(a, b, probe.bestMapA[ia]);
+      if (!peak) continue;
+      pa.push_back(uA[a]);
+      pb.push_back(peak->undistorted);
+    }
+    stats.probeMatches = static_cast<int>(pa.size());
+    if (stats.probeMatches >= kMinProbeMatches) {
+      const EpipolarPoseFit fit =
+          fitEpipolarPose(camera_.K(), T_AB_, pa, pb, params_.maxEpipolarDistancePx);
+      stats.poseFit = fit;
+      stats.posesDisagree =
+          fit.inliers >= kMinProbeMatches &&
+          fit.givenMedianPx > std::max(params_.poseDisagreementPx,
+                                       params_.poseDisagreementRatio * fit.fittedMedianPx);
+      if (stats.posesDisagree) searchT_AB = fit.fitted;
+    }
+  }
+
+  // The gate: within maxEpipolarDistancePx of A's line under the search geometry (the given
+  // poses, or the images' own relative pose when the given poses disagree with them) and in the
+  // depth range there.
+  const Eigen::Matrix3d searchF = fundamentalMatrix(camera_.K(), searchT_AB);
+  const TwoViewTriangulator searchTriangulator(camera_.K(), searchT_AB);
+  std::vector<char> admit(candidates.size(), 0);
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    const ScoredCandidate& c = candidates[i];
+    if (!stats.posesDisagree) {
+      admit[i] = givenDistance[i] <= params_.maxEpipolarDistancePx;
+      continue;
+    }
+    const Eigen::Vector3d line = searchF * uA[c.a].homogeneous();
+    admit[i] = std::abs(line.dot(uB[c.b].homogeneous())) / line.head<2>().norm() <=
+                   params_.maxEpipolarDistancePx &&
+               inDepthRange(searchTriangulator.linear(uA[c.a], uB[c.b]), searchT_AB);
+  }
+  const MutualSelection sel = selectMutual(
+      candidates, nA, nB, [&](const ScoredCandidate& c) { return admit[candidateIndex(c)] != 0; },
+      stats.candidatePairs);
 
   const double minParallax = params_.minParallaxDeg * kPi / 180.0;
   double squaredSum = 0.0;
   for (int a = 0; a < nA; ++a) {
-    const int b = bestOfA[a];
-    if (b < 0 || bestOfB[b] != a || bestScoreA[a] < params_.minScore) continue;
+    const std::size_t ia = static_cast<std::size_t>(a);
+    const int b = sel.bestOfA[ia];
+    if (b < 0 || sel.bestOfB[static_cast<std::size_t>(b)] != a ||
+        sel.bestScoreA[ia] < params_.minScore)
+      continue;
     ++stats.mutualMatches;
     // Repeated texture along the epipolar line: a runner-up almost as good makes it a guess.
-    if (bestScoreA[a] - std::max(secondScoreA[a], secondScoreB[b]) < params_.minScoreMargin) {
+    if (sel.bestScoreA[ia] -
+            std::max(sel.secondScoreA[ia], sel.secondScoreB[static_cast<std::size_t>(b)]) <
+        params_.minScoreMargin) {
       ++stats.droppedAmbiguous;
       continue;
     }
@@ -231,50 +369,44 @@ EpipolarMatchResult EpipolarGuidedMatcher::match(const cv::Mat& grayA,
     // different places of it in the two views: the correlation peak next to B's corner must be
     // close to it, and the point is triangulated from A's corner and that peak (simulator,
     // 640x480: depth RMS error 2.5 mm against 3.4 mm from the two corners, same 385 points).
-    const std::optional<Eigen::Vector2d> peak =
-        correlationPeakOffset(patchesA, a, grayB, cornersB[b], bestMapA[a],
-                              static_cast<int>(std::ceil(params_.maxPeakOffsetPx)));
-    if (!peak || peak->norm() > params_.maxPeakOffsetPx) {
-      ++stats.droppedPeakOffset;
+    const std::optional<Peak> peak = peakOf(a, b, sel.bestMapA[ia]);
+    if (!peak) {
+      ++stats.droppedPeakOffset;  // too far from the corner, or it left the image
       continue;
     }
-    // The peak is measured on B's image grid (with lens distortion): it is undistorted as a
-    // pixel of its own (adding the offset to B's undistorted corner is the same only without
-    // distortion, where the sum is kept in double precision).
-    const cv::Point2f peakPixel(cornersB[b].x + static_cast<float>(peak->x()),
-                                cornersB[b].y + static_cast<float>(peak->y()));
-    if (peakPixel.x < -0.5f || peakPixel.y < -0.5f || peakPixel.x > grayB.cols - 0.5f ||
-        peakPixel.y > grayB.rows - 0.5f) {
-      ++stats.droppedPeakOffset;  // the peak left the image: no measurement to store
+    const Eigen::Vector2d& pB = peak->undistorted;
+    // The gates judge the match in the search geometry, where a right match fits to its corner
+    // noise; the map keeps the point of the given poses (the world the caller gave).
+    const Eigen::Vector3d S =
+        searchTriangulator.refine(uA[a], pB, searchTriangulator.linear(uA[a], pB));
+    if (!S.allFinite() || S.z() <= 0.0 || (searchT_AB * S).z() <= 0.0) {
+      ++stats.droppedBehindCamera;
       continue;
     }
-    Eigen::Vector2d pB = uB[b] + *peak;
-    if (camera_.hasDistortion()) {
-      const cv::Point2f u = camera_.undistortPixels({peakPixel}).front();
-      pB = Eigen::Vector2d(u.x, u.y);
+    if (S.z() < params_.minDepthMetres || S.z() > params_.maxDepthMetres) {
+      ++stats.droppedOutsideDepthRange;
+      continue;
     }
-    const Eigen::Vector3d P = triangulator.refine(uA[a], pB, triangulator.linear(uA[a], pB));
+    if (searchTriangulator.parallaxAngle(S) < minParallax) {
+      ++stats.droppedLowParallax;
+      continue;
+    }
+    if (std::max(searchTriangulator.reprojectionErrorA(S, uA[a]),
+                 searchTriangulator.reprojectionErrorB(S, pB)) > params_.maxReprojectionErrorPx) {
+      ++stats.droppedReprojection;
+      continue;
+    }
+    const Eigen::Vector3d P =
+        stats.posesDisagree ? triangulator.refine(uA[a], pB, triangulator.linear(uA[a], pB)) : S;
     if (!P.allFinite() || P.z() <= 0.0 || (T_AB_ * P).z() <= 0.0) {
       ++stats.droppedBehindCamera;
       continue;
     }
-    if (P.z() < params_.minDepthMetres || P.z() > params_.maxDepthMetres) {
-      ++stats.droppedOutsideDepthRange;
-      continue;
-    }
-    if (triangulator.parallaxAngle(P) < minParallax) {
-      ++stats.droppedLowParallax;
-      continue;
-    }
     const double eA = triangulator.reprojectionErrorA(P, uA[a]);
     const double eB = triangulator.reprojectionErrorB(P, pB);
-    if (std::max(eA, eB) > params_.maxReprojectionErrorPx) {
-      ++stats.droppedReprojection;
-      continue;
-    }
     squaredSum += eA * eA + eB * eB;
-    result.matches.push_back({a, b, P, std::nullopt, peakPixel});
-    result.scores.push_back(bestScoreA[a]);
+    result.matches.push_back({a, b, P, std::nullopt, peak->pixel});
+    result.scores.push_back(sel.bestScoreA[ia]);
   }
   stats.kept = static_cast<int>(result.matches.size());
   if (stats.kept > 0) stats.reprojectionRmsPx = std::sqrt(squaredSum / (2.0 * stats.kept));

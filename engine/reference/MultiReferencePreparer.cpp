@@ -120,23 +120,17 @@ MultiPreparation MultiReferencePreparer::prepare(const std::vector<ReferenceImag
   return build(images, poses, poseSource, report, progress, true);
 }
 
-MultiPreparation MultiReferencePreparer::build(const std::vector<ReferenceImage>& images,
-                                               const std::vector<RigidPose>& poses,
-                                               const std::string& poseSource,
-                                               MultiPreparationReport report,
-                                               const PairProgress& progress,
-                                               bool posesGiven) const {
+MultiPreparation MultiReferencePreparer::matchAndMerge(
+    const std::vector<ReferenceImage>& images, const std::vector<RigidPose>& poses,
+    const std::string& poseSource, MultiPreparationReport report, const PairProgress& progress,
+    const CornerParams& cornerParams, bool denser) const {
   const int n = static_cast<int>(images.size());
-  for (int v = 0; v < n; ++v)
-    if (!poses[static_cast<std::size_t>(v)].allFinite())
-      throw Error("the pose of reference image '" + images[static_cast<std::size_t>(v)].name +
-                  "' (" + poseSource + ") is not finite");
-
   MultiPreparation out;
   MultiReferenceMap& map = out.map;
   map.camera = camera_;
   map.poseSource = poseSource;
   map.preparationParams = params_.toYaml();
+  report.denserCorners = denser;
 
   // Corners of every reference, found once (one detector, in order, as the two-view preparation
   // does for A then B).
@@ -144,7 +138,7 @@ MultiPreparation MultiReferencePreparer::build(const std::vector<ReferenceImage>
   std::vector<std::vector<cv::Point2f>> positions;
   std::vector<std::size_t> firstNode;
   std::size_t nodes = 0;
-  const CornerDetector detector(params_.corners);
+  const CornerDetector detector(cornerParams);
   for (int v = 0; v < n; ++v) {
     const ReferenceImage& r = images[static_cast<std::size_t>(v)];
     grays.push_back(toGray8(r.image));
@@ -171,6 +165,7 @@ MultiPreparation MultiReferencePreparer::build(const std::vector<ReferenceImage>
       ReferencePairReport pair;
       pair.a = a;
       pair.b = b;
+      pair.denserCorners = denser;
       pair.baselineMetres = (Ta.cameraCentre() - Tb.cameraCentre()).norm();
       pair.viewAngleDeg = viewAngleDeg(Ta, Tb);
       std::ostringstream why;
@@ -327,6 +322,40 @@ MultiPreparation MultiReferencePreparer::build(const std::vector<ReferenceImage>
   report.observationHistogram.assign(static_cast<std::size_t>(n) + 1, 0);
   for (const MapPoint& p : map.points) ++report.observationHistogram[p.observations.size()];
 
+  out.report = std::move(report);
+  return out;
+}
+
+MultiPreparation MultiReferencePreparer::build(const std::vector<ReferenceImage>& images,
+                                               const std::vector<RigidPose>& poses,
+                                               const std::string& poseSource,
+                                               MultiPreparationReport report,
+                                               const PairProgress& progress,
+                                               bool posesGiven) const {
+  const int n = static_cast<int>(images.size());
+  for (int v = 0; v < n; ++v)
+    if (!poses[static_cast<std::size_t>(v)].allFinite())
+      throw Error("the pose of reference image '" + images[static_cast<std::size_t>(v)].name +
+                  "' (" + poseSource + ") is not finite");
+
+  // The references' own corners first; a map short of preparation.target_points is made again
+  // from denser corners (soft images repeat few of the strongest Harris corners between views),
+  // and the map with more points is kept.
+  MultiPreparation out =
+      matchAndMerge(images, poses, poseSource, report, progress, params_.corners, false);
+  if (static_cast<int>(out.map.points.size()) < params_.targetPoints) {
+    MultiPreparation denser =
+        matchAndMerge(images, poses, poseSource, report, progress, params_.denserCorners(), true);
+    denser.report.pointsBeforeDenserCorners = static_cast<int>(out.map.points.size());
+    if (denser.map.points.size() > out.map.points.size()) {
+      out = std::move(denser);
+    } else {
+      out.report.pointsBeforeDenserCorners = static_cast<int>(out.map.points.size());
+      out.report.denserCornersGave = static_cast<int>(denser.map.points.size());
+    }
+  }
+  MultiReferenceMap& map = out.map;
+  report = std::move(out.report);
   if (static_cast<int>(map.points.size()) < params_.minMatches) {
     std::ostringstream ss;
     ss << "only " << map.points.size() << " map points from " << n << " reference images (at least "

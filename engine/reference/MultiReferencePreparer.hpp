@@ -10,9 +10,11 @@
 // seen by 3+ is re-triangulated from all its measurements (its first reference's corner and the
 // correlation peaks the pairs found for it elsewhere; linear DLT, then Gauss-Newton on the
 // reprojection errors with Ceres) and loses, worst first, every observation reprojecting farther
-// than maxTrackReprojectionErrorPx. Last, the keypoint layer for relocalisation is built
-// (buildReferenceKeypoints with params.relocalisation, unless disabled there). Bad input throws
-// reftrack::Error naming the image or pair.
+// than maxTrackReprojectionErrorPx. A map of fewer than targetPoints points is made again from
+// denser corners (ReferencePreparerParams::denserCorners) and the one with more points kept. Last,
+// the keypoint layer for relocalisation is built (buildReferenceKeypoints with
+// params.relocalisation, unless disabled there). Bad input throws reftrack::Error naming the image
+// or pair.
 #include <functional>
 #include <optional>
 #include <string>
@@ -30,7 +32,8 @@ struct ReferencePairReport {
   bool matched = false;       // false: skipped by the gates (reason in `skipped`)
   std::string skipped;
   EpipolarMatchStats matching;
-  bool merged = false;  // kept matches >= minPairMatches: its matches went into the map
+  bool denserCorners = false;  // matched again with ReferencePreparerParams::denserCorners()
+  bool merged = false;         // kept matches >= minPairMatches: its matches went into the map
 };
 
 struct MultiPreparationReport {
@@ -44,6 +47,12 @@ struct MultiPreparationReport {
   std::vector<int> observationHistogram;  // [k]: points seen by exactly k references
   double multiViewRmsPx = 0.0;  // reprojection RMS of the 3+-view points (their measurements)
   std::optional<ReferencePoseRefinement> poseRefinement;  // when params.refines()
+  // The map was short of params.targetPoints with the references' corners: made again from
+  // denser ones (denserCorners: the map kept is that one; pointsBeforeDenserCorners: the first
+  // map's points; denserCornersGave: the denser map's points when it was not kept, else -1).
+  bool denserCorners = false;
+  int pointsBeforeDenserCorners = -1;
+  int denserCornersGave = -1;
 };
 
 // A reference's pose measured in its own image from a fiducial in view (a marker, a calibration
@@ -87,6 +96,12 @@ class MultiReferencePreparer {
                          const std::vector<RigidPose>& poses, const std::string& poseSource,
                          MultiPreparationReport report, const PairProgress& progress,
                          bool posesGiven) const;
+  // Corners with cornerParams, every pair matched, the tracks merged into points (no pose
+  // refinement, no keypoint layer, no minimum).
+  MultiPreparation matchAndMerge(const std::vector<ReferenceImage>& images,
+                                 const std::vector<RigidPose>& poses, const std::string& poseSource,
+                                 MultiPreparationReport report, const PairProgress& progress,
+                                 const CornerParams& cornerParams, bool denser) const;
   void checkImages(const std::vector<ReferenceImage>& images) const;
 
   PinholeCamera camera_;

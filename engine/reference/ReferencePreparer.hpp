@@ -53,6 +53,23 @@ struct ReferencePreparerParams {
   // (matching.max_peak_offset_px 1.5 between B's corner and the peak it triangulated from, plus
   // matching.max_reprojection_error_px 1.0) admit a corner up to 2.5 px from its point.
   double maxTrackReprojectionErrorPx = 2.5;
+  // A map (MultiReferencePreparer) of fewer points than this is made again from denser corners
+  // (three times the count down to 1e-6 of the strongest Harris response, half the spacing), and
+  // the map with more points is kept. Soft, compressed frames repeat few of the strongest corners
+  // between two views (`experiment-reference-pair`, Kinect 40 cm / 15 degree pairs: 0-53 points
+  // -> 54-105, found in other frames as accurately as SIFT matches' points); the sharp clips' maps
+  // (116-177 points) are left as they are (the denser desk map tracked worse: README).
+  int targetPoints = 100;
+  int denserCornerCount = 1000;  // at 320x240, as corners.count
+  double denserCornerQuality = 1e-6;
+  double denserCornerMinDistancePx = 2.0;
+  CornerParams denserCorners() const {
+    CornerParams c = corners;
+    c.countAt320x240 = denserCornerCount;
+    c.quality = denserCornerQuality;
+    c.minDistancePx = denserCornerMinDistancePx;
+    return c;
+  }
   // Refine the given (marker / --poses) poses of references 1..N-1 from the map's own matches,
   // reference 0 and the scale held by the given poses (ReferencePoseRefiner), fitting the
   // correlation peaks the points were triangulated from (both the N- and the two-reference

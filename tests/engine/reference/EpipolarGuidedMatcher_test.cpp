@@ -98,9 +98,12 @@ TEST(EpipolarGuidedMatcher, MatchesOnAPlaneAreCorrectAndTriangulateOntoIt) {
 TEST(EpipolarGuidedMatcher, AWrongPoseLosesTheCorrectMatches) {
   const TwoViews& v = views();
   const Eigen::Matrix3d H = v.scene.homographyAtoB(v.T_A, v.T_B);
+  // The gate alone (no probe of the given poses: that one would notice, see below).
+  EpipolarMatcherParams noProbe;
+  noProbe.probeEpipolarDistancePx = 0.0;
   const auto correctMatches = [&](const RigidPose& T_B) {
     int correct = 0;
-    for (const ReferenceMatch& m : EpipolarGuidedMatcher(v.scene.camera, v.T_A, T_B)
+    for (const ReferenceMatch& m : EpipolarGuidedMatcher(v.scene.camera, v.T_A, T_B, noProbe)
                                        .match(v.grayA, v.cornersA, v.grayB, v.cornersB)
                                        .matches) {
       const cv::Point2f a = v.cornersA[static_cast<size_t>(m.cornerA)];
@@ -117,6 +120,85 @@ TEST(EpipolarGuidedMatcher, AWrongPoseLosesTheCorrectMatches) {
                         Eigen::Vector3d::Zero());
   const int wrong = correctMatches(twist * v.T_B);
   EXPECT_LT(wrong, right / 3) << right << " vs " << wrong;
+}
+
+namespace {
+
+// The matches of `r` whose B side is where the plane sends A's corner (1.5 px: right).
+int rightMatches(const TwoViews& v, const EpipolarMatchResult& r) {
+  const Eigen::Matrix3d H = v.scene.homographyAtoB(v.T_A, v.T_B);
+  int right = 0;
+  for (const ReferenceMatch& m : r.matches) {
+    const cv::Point2f a = v.cornersA[static_cast<size_t>(m.cornerA)];
+    const Eigen::Vector3d q = H * Eigen::Vector3d(a.x, a.y, 1.0);
+    const cv::Point2f b = m.peakB.value_or(v.cornersB[static_cast<size_t>(m.cornerB)]);
+    if ((q.head<2>() / q.z() - Eigen::Vector2d(b.x, b.y)).norm() <= 1.5) ++right;
+  }
+  return right;
+}
+
+}  // namespace
+
+TEST(EpipolarGuidedMatcher, ExactPosesAgreeWithTheImagesAndTheProbeChangesNothing) {
+  const TwoViews& v = views();
+  EpipolarMatcherParams noProbe;
+  noProbe.probeEpipolarDistancePx = 0.0;
+  const EpipolarMatchResult probed = EpipolarGuidedMatcher(v.scene.camera, v.T_A, v.T_B)
+                                         .match(v.grayA, v.cornersA, v.grayB, v.cornersB);
+  const EpipolarMatchResult plain = EpipolarGuidedMatcher(v.scene.camera, v.T_A, v.T_B, noProbe)
+                                        .match(v.grayA, v.cornersA, v.grayB, v.cornersB);
+  ASSERT_TRUE(probed.stats.poseFit.has_value());
+  EXPECT_FALSE(plain.stats.poseFit.has_value());
+  EXPECT_FALSE(probed.stats.posesDisagree);
+  // Exact poses: the probe pairs lie on the given lines to their corner noise (measured 0.07 px
+  // median), which the fitted pose cannot beat by the disagreement ratio.
+  EXPECT_LT(probed.stats.poseFit->givenMedianPx, 0.2);
+  EXPECT_GT(probed.stats.probeMatches, 100);
+  ASSERT_EQ(probed.matches.size(), plain.matches.size());
+  for (std::size_t i = 0; i < plain.matches.size(); ++i) {
+    EXPECT_EQ(probed.matches[i].cornerA, plain.matches[i].cornerA);
+    EXPECT_EQ(probed.matches[i].cornerB, plain.matches[i].cornerB);
+    EXPECT_EQ(probed.matches[i].pointA, plain.matches[i].pointA);
+  }
+  EXPECT_EQ(probed.stats.candidatePairs, plain.stats.candidatePairs);
+  EXPECT_EQ(probed.stats.droppedAmbiguous, plain.stats.droppedAmbiguous);
+}
+
+TEST(EpipolarGuidedMatcher, GivenPosesThatDisagreeWithTheImagesAreMatchedAlongTheImagesLines) {
+  const TwoViews& v = views();
+  // B's given pose turned by 0.5 degree about its x axis (as a depth camera's pose given for the
+  // colour camera beside it): the lines move by ~4-6 px, past the 2 px gate.
+  const RigidPose turn(Eigen::AngleAxisd(0.5 * M_PI / 180.0, Eigen::Vector3d::UnitX()).matrix(),
+                       Eigen::Vector3d::Zero());
+  const RigidPose givenB = turn * v.T_B;
+  EpipolarMatcherParams noProbe;
+  noProbe.probeEpipolarDistancePx = 0.0;
+  const EpipolarMatchResult exact = EpipolarGuidedMatcher(v.scene.camera, v.T_A, v.T_B)
+                                        .match(v.grayA, v.cornersA, v.grayB, v.cornersB);
+  const EpipolarMatchResult gated = EpipolarGuidedMatcher(v.scene.camera, v.T_A, givenB, noProbe)
+                                        .match(v.grayA, v.cornersA, v.grayB, v.cornersB);
+  const EpipolarMatchResult probed = EpipolarGuidedMatcher(v.scene.camera, v.T_A, givenB)
+                                         .match(v.grayA, v.cornersA, v.grayB, v.cornersB);
+  const int rightExact = rightMatches(v, exact);
+  ASSERT_GT(rightExact, 200);
+  EXPECT_LT(rightMatches(v, gated), rightExact / 3);
+  ASSERT_TRUE(probed.stats.poseFit.has_value());
+  EXPECT_TRUE(probed.stats.posesDisagree);
+  EXPECT_GT(probed.stats.poseFit->givenMedianPx, 2.0);
+  EXPECT_LT(probed.stats.poseFit->fittedMedianPx, 0.2);
+  // The images' pose is the true one: the turn is undone to a tenth of it (measured 0.053 deg
+  // left: the scene is one plane, which fixes a relative pose less well than depth would).
+  EXPECT_LT(RigidPose::rotationDistance(probed.stats.poseFit->fitted, v.T_B * v.T_A.inverse()) *
+                180.0 / M_PI,
+            0.1);
+  // Along the fitted lines the right matches come back (measured: as many as with the exact
+  // poses), and hardly a wrong one comes with them.
+  const int right = rightMatches(v, probed);
+  EXPECT_GE(right, rightExact * 9 / 10) << right << " of " << rightExact;
+  EXPECT_LE(probed.stats.kept - right, probed.stats.kept / 50);
+  // The points stay in the given poses' world: triangulated with them, so they reproject with
+  // about half the lines' offset in each image (the exact poses' map: < 0.3 px).
+  EXPECT_GT(probed.stats.reprojectionRmsPx, 1.0);
 }
 
 TEST(EpipolarGuidedMatcher, DropsAreCountedPerReason) {
