@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <filesystem>
+#include <fstream>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
@@ -483,4 +485,74 @@ TEST(HomographyTracker, RegistersAJumpingPhotoColdAtOnceAndChecksOnlyLargeSteps)
   EXPECT_TRUE(large.guided);
   EXPECT_GT(large.stageMs[6].second, 0.0);
   EXPECT_LT(test::cornerError(large.H, leap, size), 1.0);
+}
+
+// Real photos of buildings and squares (../shared/data/real-photo-pairs, CTU "homogr"), each
+// reference's img1 given photos of other scenes (the other pairs' img2, both at half size:
+// 300x225 to 856x684): nothing there is the reference, so every registration returned would be
+// wrong. The check judges H in its inliers' region only; with chance keypoint matches on
+// windows, roofs and sky that region must still be confirmed by correlation, and hold 15% of
+// the overlap. Measured: all 14 refused (no homography returned).
+TEST(HomographyTracker, RegistersNoPhotoOfAnotherScene) {
+  const auto data = test::sharedDataDir();
+  if (!data || !std::filesystem::exists(*data / "real-photo-pairs" / "adam" / "img1.png"))
+    GTEST_SKIP() << "../shared/data/real-photo-pairs not present";
+  const std::vector<std::string> names = {"Boston",      "BruggeSquare", "BruggeTower", "Eiffel",
+                                          "ExtremeZoom", "LePoint1",     "adam"};
+  const auto half = [&](const std::string& name, const char* image) {
+    const cv::Mat full =
+        cv::imread((*data / "real-photo-pairs" / name / image).string(), cv::IMREAD_GRAYSCALE);
+    cv::Mat small;
+    cv::resize(full, small, cv::Size(), 0.5, 0.5, cv::INTER_AREA);
+    return small;
+  };
+  for (size_t i = 0; i < names.size(); ++i) {
+    HomographyTracker tracker(half(names[i], "img1.png"), homographyParams());
+    for (const size_t other : {(i + 1) % names.size(), (i + 3) % names.size()}) {
+      tracker.reset();
+      const HomographyTrackResult r = tracker.track(half(names[other], "img2.png"));
+      EXPECT_FALSE(r.tracked) << names[i] << " given " << names[other] << ": " << r.check;
+      EXPECT_FALSE(r.failure.empty());
+    }
+  }
+}
+
+// A view that is only partly the plane (Eiffel of the real pairs: the tower, with trees, people,
+// a kiosk and the sky moving otherwise; half size, 599x479): registered within 5 px of the given
+// homography over the overlap, the check saying it compared the inliers' region. Measured:
+// 1.1 px (before the check and the final refinement kept to that region: 4.1 px at full size,
+// or refused by the check).
+TEST(HomographyTracker, RegistersAPartlyPlanarPhotoWhereItsInliersAre) {
+  const auto data = test::sharedDataDir();
+  if (!data || !std::filesystem::exists(*data / "real-photo-pairs" / "Eiffel" / "H1to2p"))
+    GTEST_SKIP() << "../shared/data/real-photo-pairs not present";
+  const std::filesystem::path dir = *data / "real-photo-pairs" / "Eiffel";
+  cv::Mat reference, frame;
+  cv::resize(cv::imread((dir / "img1.png").string(), cv::IMREAD_GRAYSCALE), reference, cv::Size(),
+             0.5, 0.5, cv::INTER_AREA);
+  cv::resize(cv::imread((dir / "img2.png").string(), cv::IMREAD_GRAYSCALE), frame, cv::Size(), 0.5,
+             0.5, cv::INTER_AREA);
+  std::ifstream in(dir / "H1to2p");
+  cv::Matx33d given;
+  for (int k = 0; k < 9; ++k) in >> given.val[k];
+  // Both images halved about pixel centres: x_half = (x + 0.5) / 2 - 0.5.
+  const cv::Matx33d S(0.5, 0, -0.25, 0, 0.5, -0.25, 0, 0, 1);
+  const cv::Matx33d truth = S * given * S.inv();
+  const HomographyTrackResult r = HomographyTracker(reference, homographyParams()).track(frame);
+  ASSERT_TRUE(r.tracked) << r.failure;
+  EXPECT_NE(r.check.find("inliers' region"), std::string::npos) << r.check;
+  // The mean error over the reference points the frame sees (a 32 x 24 grid).
+  double sum = 0;
+  int n = 0;
+  for (int y = 0; y < 24; ++y)
+    for (int x = 0; x < 32; ++x) {
+      const cv::Point2d p((x + 0.5) * reference.cols / 32 - 0.5,
+                          (y + 0.5) * reference.rows / 24 - 0.5);
+      const cv::Point2d t = transferPoint(truth, p);
+      if (t.x < 0 || t.y < 0 || t.x > frame.cols - 1 || t.y > frame.rows - 1) continue;
+      sum += cv::norm(transferPoint(r.H, p) - t);
+      ++n;
+    }
+  ASSERT_GT(n, 100);
+  EXPECT_LT(sum / n, 5.0);
 }
