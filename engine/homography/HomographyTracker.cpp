@@ -29,6 +29,10 @@ constexpr double kThinSupportFraction = 0.04;
 // (see refine()).
 constexpr double kColdRefineRmsFactor = 1.25;
 constexpr double kColdRefineRmsSlackPx = 0.1;
+// Off: with it, cold registrations of the shared planar clips' frames kept their RANSAC fit and
+// ended 1.2-5.7 px from the tracked ones at the frame corners (HomographyTracker test of the
+// clips in shuffled order), where the refinement brings them within 1 px.
+constexpr bool kColdRefineStrict = false;
 constexpr double kRotationRmsTolerance = 1.25;
 
 // SD of the points across their narrowest direction (the smaller principal axis).
@@ -458,7 +462,7 @@ void HomographyTracker::refine(Attempt& a, const ImagePyramid& frame, double sta
         fitSq += f * f;
         ++n;
       }
-    if (n > 0 && !support.whole())
+    if (n > 0 && !support.whole() && kColdRefineStrict)
       threshold = std::min(threshold,
                            kColdRefineRmsFactor * std::sqrt(fitSq / n) + kColdRefineRmsSlackPx * s);
     if (n > 0 && std::sqrt(sq / n) <= threshold) a.est.H = r.H;
@@ -481,9 +485,13 @@ void HomographyTracker::finish(Attempt& a, const ImagePyramid& frame,
                                double stageMs[kStages]) const {
   if (!a.tracked || a.finished) return;
   a.finished = true;
-  // Refined and checked where H is known to hold: its inliers' region of the frame.
+  // Checked where H is known to hold: its inliers' region of the frame.
   const SupportRegion support = supportOf(a, frame.image().size());
-  if (refiner_ && !a.rotationModel && a.level == 0) refine(a, frame, stageMs, nullptr, support);
+  // The refinement itself aligns the whole frame: kept to the inliers' region, cold registrations
+  // of the shared planar clips' frames ended 1.2-5.7 px from the tracked ones at the frame
+  // corners (HomographyTracker test of the clips in shuffled order), where it brings them within
+  // 1 px.
+  if (refiner_ && !a.rotationModel && a.level == 0) refine(a, frame, stageMs);
   if (!verifier_) return;
   auto clock = std::chrono::steady_clock::now();
   const RegistrationCheck c = verifier_->check(frame, a.est.H, support);

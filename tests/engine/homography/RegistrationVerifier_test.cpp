@@ -144,7 +144,7 @@ TEST(RegistrationVerifier, RefusesAHomographyDisplacedAlongABrickWall) {
 }
 
 // A view that is only partly the plane: the frame shows the reference (tilted view, its true H)
-// in its left 60% and an unrelated texture right of it (another facade, trees). Over the whole
+// in its left 35% and an unrelated texture right of it (another facade, trees). Over the whole
 // overlap the check refuses the true H (the right part cannot confirm it); judged in the region
 // its inliers span (points on the left part), it passes and says so; a homography 10 px off is
 // refused there too (bound: 2 px at 320x240, 4 px here), and a region holding less than
@@ -154,7 +154,7 @@ TEST(RegistrationVerifier, JudgesAPartlyPlanarViewInItsInliersRegion) {
   const cv::Mat reference = test::texturedImage(size, 68);
   const cv::Matx33d truth = test::tiltedView(size, 25.0, 0.95, 10.0);
   cv::Mat frame = test::warpedBy(reference, truth);
-  const cv::Rect other(384, 0, 256, 480);
+  const cv::Rect other(224, 0, 416, 480);
   test::texturedImage(size, 69)(other).copyTo(frame(other));
   const ImagePyramid pyramid(test::withNoise(frame, 2.0, 9));
   const RegistrationVerifier verifier(reference);
@@ -164,13 +164,13 @@ TEST(RegistrationVerifier, JudgesAPartlyPlanarViewInItsInliersRegion) {
   // The inliers: frame points on the plane's part (a grid, as keypoint or corner inliers spread).
   std::vector<cv::Point2f> inliers;
   for (int y = 20; y < 470; y += 40)
-    for (int x = 20; x < 360; x += 40) inliers.emplace_back(x, y);
+    for (int x = 20; x < 210; x += 40) inliers.emplace_back(x, y);
   const SupportRegion support(inliers, supportMargin(size));
   const RegistrationCheck plane = verifier.check(pyramid, truth, support);
   EXPECT_TRUE(plane.passed) << plane.failure;
   EXPECT_FALSE(plane.wholeOverlap);
-  EXPECT_GT(plane.supportFraction, 0.45);
-  EXPECT_LT(plane.supportFraction, 0.75);
+  EXPECT_GT(plane.supportFraction, 0.18);  // measured 0.23
+  EXPECT_LT(plane.supportFraction, 0.35);
   EXPECT_NE(plane.summary().find("in the inliers' region"), std::string::npos) << plane.summary();
   const double angles[4] = {30, 120, 210, 300};
   const RegistrationCheck off =
