@@ -119,6 +119,10 @@ void HomographyTrackerParams::fields(Self& p, const Field& field) {
       .help(
           "The check fails when its correction moves a textured point more than this (px at "
           "320x240)");
+  field("verify_min_support", p.verifyMinSupport, Range{0.0, 1.0})
+      .help(
+          "The check compares the inliers' region only, and fails when it covers less than this "
+          "fraction of the overlap");
 }
 
 template struct ParamSection<HomographyTrackerParams>;

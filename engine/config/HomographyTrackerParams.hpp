@@ -116,6 +116,10 @@ struct HomographyTrackerParams : ParamSection<HomographyTrackerParams> {
   double verifyMinFraction = 0.3;
   double verifyMinSpread = 0.5;
   double verifyMaxOffsetPx = 2.0;
+  // The check judges H where it is known to hold: the convex hull of its inlier matches (plus a
+  // margin), which must cover at least this fraction of the overlap (on a partly planar view the
+  // trees, people, sky and other facades do not follow the plane's H and are not compared).
+  double verifyMinSupport = 0.15;
 
   template <class Self, class Field>  // its keys, in order: ParamFields.hpp
   static void fields(Self& self, const Field& field);

@@ -93,25 +93,30 @@ HomographyRefiner::HomographyRefiner(const cv::Mat& referenceGray, int pointsAt3
 }
 
 RefinedHomography HomographyRefiner::refine(const cv::Mat& frameGray, const cv::Matx33d& H,
-                                            int minInliers, RefineStart start) const {
+                                            int minInliers, RefineStart start,
+                                            const SupportRegion& support) const {
   if (frameGray.empty() || frameGray.type() != CV_8UC1)
     throw Error("homography refiner: the frame must be a non-empty 8-bit grey image");
-  return refine(ImagePyramid(frameGray), H, minInliers, start);
+  return refine(ImagePyramid(frameGray), H, minInliers, start, support);
 }
 
 RefinedHomography HomographyRefiner::refine(const ImagePyramid& frame, const cv::Matx33d& H,
-                                            int minInliers, RefineStart start) const {
-  if (level_ == 0) return refineOnLevel(frame.image(), H, minInliers, start);
+                                            int minInliers, RefineStart start,
+                                            const SupportRegion& support) const {
+  if (level_ == 0) return refineOnLevel(frame.image(), H, minInliers, start, support);
   // On the pyramid level: H_level = S^-1 H S with S = diag(2^level, 2^level, 1).
   const double f = static_cast<double>(1 << level_);
   const cv::Matx33d S(f, 0, 0, 0, f, 0, 0, 0, 1), Sinv(1 / f, 0, 0, 0, 1 / f, 0, 0, 0, 1);
-  RefinedHomography r = refineOnLevel(frame.level(level_), Sinv * H * S, minInliers, start);
+  RefinedHomography r =
+      refineOnLevel(frame.level(level_), Sinv * H * S, minInliers, start, support.scaled(1.0 / f));
   r.H = r.success ? S * r.H * Sinv : H;
+  for (cv::Point2f& p : r.inlierPoints) p *= static_cast<float>(f);
   return r;
 }
 
 RefinedHomography HomographyRefiner::refineOnLevel(const cv::Mat& frameGray, const cv::Matx33d& H,
-                                                   int minInliers, RefineStart start) const {
+                                                   int minInliers, RefineStart start,
+                                                   const SupportRegion& support) const {
   RefinedHomography out;
   out.H = H;
   const double s = resolutionScale(frameGray.size());
@@ -128,7 +133,8 @@ RefinedHomography HomographyRefiner::refineOnLevel(const cv::Mat& frameGray, con
     for (const cv::Point2f& p : levelPoints_) {
       const cv::Point2d q = transferPoint(current, cv::Point2d(p.x, p.y));
       if (q.x >= half && q.y >= half && q.x < frameGray.cols - 1 - half &&
-          q.y < frameGray.rows - 1 - half) {
+          q.y < frameGray.rows - 1 - half &&
+          support.contains(cv::Point2f(static_cast<float>(q.x), static_cast<float>(q.y)))) {
         src.push_back(p);
         predicted.emplace_back(static_cast<float>(q.x), static_cast<float>(q.y));
       }
@@ -189,6 +195,9 @@ RefinedHomography HomographyRefiner::refineOnLevel(const cv::Mat& frameGray, con
     current = fit;
     out.points = static_cast<int>(a.size());
     out.inliers = inliers;
+    out.inlierPoints.clear();
+    for (size_t i = 0; i < a.size(); ++i)
+      if (transferError(fit, a[i], b[i]) < cauchy) out.inlierPoints.push_back(b[i]);
     out.rounds = round + 1;
     if (moved < kConvergedPx) break;
   }

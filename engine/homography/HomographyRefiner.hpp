@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "engine/features/ImagePyramid.hpp"
+#include "engine/homography/SupportRegion.hpp"
 
 namespace reftrack {
 
@@ -30,6 +31,8 @@ struct RefinedHomography {
   int points = 0;                      // reference points aligned in the last round
   int inliers = 0;                     // of those, within the Cauchy scale of the fit
   int rounds = 0;
+  // The frame positions (the frame's pixels) of the last round's inliers.
+  std::vector<cv::Point2f> inlierPoints;
 };
 
 class HomographyRefiner {
@@ -42,19 +45,23 @@ class HomographyRefiner {
 
   // frameGray: 8-bit grey; H: reference -> frame, within a few pixels of the truth where the
   // reference points land. Fails (success = false, H unchanged) when fewer than minInliers points
-  // support the fit or the fit diverges.
+  // support the fit or the fit diverges. support: only the reference points H puts inside it
+  // (frame pixels) are aligned — the part of a partly planar view that H explains (default: the
+  // whole frame).
   RefinedHomography refine(const cv::Mat& frameGray, const cv::Matx33d& H, int minInliers,
-                           RefineStart start = RefineStart::Coarse) const;
+                           RefineStart start = RefineStart::Coarse,
+                           const SupportRegion& support = {}) const;
   // The same on the frame's pyramid (its level() is built once for every user of the pyramid).
   RefinedHomography refine(const ImagePyramid& frame, const cv::Matx33d& H, int minInliers,
-                           RefineStart start = RefineStart::Coarse) const;
+                           RefineStart start = RefineStart::Coarse,
+                           const SupportRegion& support = {}) const;
 
   const std::vector<cv::Point2f>& points() const { return points_; }  // full-resolution pixels
   int level() const { return level_; }  // the pyramid level aligned on (0: full resolution)
 
  private:
   RefinedHomography refineOnLevel(const cv::Mat& frameLevel, const cv::Matx33d& H, int minInliers,
-                                  RefineStart start) const;
+                                  RefineStart start, const SupportRegion& support) const;
 
   int level_ = 0;
   cv::Mat reference_;                     // on the level

@@ -19,11 +19,12 @@
 // so a frame gets the same H whether it was tracked or registered cold. A registration not
 // carried from the previous frame's (cold, or after a loss) is reported only once
 // RegistrationVerifier confirms it (homography.verify): the reference warped by H must match the
-// frame over the whole overlap; otherwise the frame is lost with the reason. A cold frame that
-// magnifies the reference (a 2-4x zoom) is registered on the pyramid level where the reference
-// appears at about its own scale. Reference and frames may differ in size (another camera).
-// Given the camera's K, a frame the general homography fails on — or fits on a thin strip only —
-// is solved with the rotation-only model H = K R K^-1 (homography.rotation_model), which a
+// frame over the region its inlier matches span (a view may be only partly the plane), which
+// must hold verify_min_support of the overlap; otherwise the frame is lost with the reason. A cold
+// frame that magnifies the reference (a 2-4x zoom) is registered on the pyramid level where the
+// reference appears at about its own scale. Reference and frames may differ in size (another
+// camera). Given the camera's K, a frame the general homography fails on — or fits on a thin strip
+// only — is solved with the rotation-only model H = K R K^-1 (homography.rotation_model), which a
 // sliver of overlap still determines.
 #include <Eigen/Core>
 #include <map>
@@ -57,8 +58,11 @@ struct HomographyTrackResult {
   // Cold registration through the keypoint layer: the correlation matching was guided by the
   // keypoint homography (guided stays false).
   bool keypointGuided = false;
-  bool rotationModel = false;             // H is the rotation-only model K R K^-1 (needs K)
-  std::string failure;                    // why the frame was not tracked
+  bool rotationModel = false;  // H is the rotation-only model K R K^-1 (needs K)
+  std::string failure;         // why the frame was not tracked
+  // What the registration check compared and found (RegistrationCheck::summary), when it ran
+  // on this frame (cold registrations, jumps), passed or not.
+  std::string check;
   std::vector<cv::Point2f> frameCorners;  // corner positions detected in this frame
   // Inlier correspondences (reference position, frame position) of the final H.
   std::vector<std::pair<cv::Point2f, cv::Point2f>> inlierMatches;
@@ -128,10 +132,17 @@ class HomographyTracker {
     // back to full resolution).
     int level = 0;
     bool finished = false;  // refined and checked (finish())
+    // The whole-image alignment's inliers (full-resolution frame pixels) when H is that
+    // alignment's (the corner matches failed): the support region then.
+    std::vector<cv::Point2f> alignedInliers;
+    std::string check;  // the registration check's summary, when it ran
   };
+  // support: the frame region the guide is known to explain (a keypoint homography's inliers):
+  // the inlier ratio counts only the reference corners it puts there.
   Attempt attempt(const ImagePyramid& frame, const CornerDetector& detector,
                   const ReferenceSet& ref, const std::optional<cv::Matx33d>& base, bool coasting,
-                  double stageMs[kStages], bool chainFrameToFrame = true, int denseRadius = 0);
+                  double stageMs[kStages], bool chainFrameToFrame = true, int denseRadius = 0,
+                  const SupportRegion& support = {});
   // Matches the attempt's frame corners to `ref` — around the positions `guide` predicts
   // (warped windows, +-guidedHalf pixels), or unguided — then fits H (the general model, then
   // the rotation model) and applies the inlier rules. stageMs[2..3] accumulate. denseRadius > 0:
@@ -139,11 +150,15 @@ class HomographyTracker {
   // position instead of at the frame's corners (searchWarpedWindows).
   void matchAndFit(Attempt& a, const cv::Mat& gray, const ReferenceSet& ref,
                    const std::optional<cv::Matx33d>& guide, double guidedHalf,
-                   double stageMs[kStages], int denseRadius = 0) const;
+                   double stageMs[kStages], int denseRadius = 0,
+                   const SupportRegion& support = {}) const;
+  // The region of the frame (full resolution) the attempt's H is known to explain: the convex
+  // hull of its inliers' frame positions (or of the alignment's), with supportMargin.
+  SupportRegion supportOf(const Attempt& a, cv::Size frameSize) const;
   // The registered attempt's H refined by `refiner` (refiner_ when null; kept when it still fits
   // the attempt's inliers); stageMs[5] accumulates.
   void refine(Attempt& a, const ImagePyramid& frame, double stageMs[kStages],
-              const HomographyRefiner* refiner = nullptr) const;
+              const HomographyRefiner* refiner = nullptr, const SupportRegion& support = {}) const;
   // A registration not carried from the previous frame's (cold, or after a loss): refined
   // (unless done on a pyramid level, or the rotation model) and checked by verifier_; a refused
   // one is no longer tracked and says why. stageMs[5..6] accumulate.
@@ -151,8 +166,11 @@ class HomographyTracker {
   // Registration around `start` (reference -> frame, a few pixels off): aligned by the refiner,
   // then the reference windows searched close around it (on a pyramid level for a frame that
   // magnifies the reference), finished.
+  // startInliers: the frame positions (full resolution) of the matches that gave start (a
+  // keypoint homography's inliers; empty: the whole frame).
   Attempt alignedAttempt(const ImagePyramid& frame, const cv::Matx33d& start,
-                         double stageMs[kStages]);
+                         double stageMs[kStages],
+                         const std::vector<cv::Point2f>& startInliers = {});
   // Registration without a prediction: around the keypoint layer's homography, then unguided;
   // each finished.
   Attempt coldAttempt(const ImagePyramid& frame, double stageMs[kStages], bool& keypointGuided);

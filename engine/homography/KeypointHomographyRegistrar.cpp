@@ -343,6 +343,8 @@ KeypointRegistration KeypointHomographyRegistrar::registerToView(
     out.failure = "degenerate keypoint homography";
     return out;
   }
+  for (size_t i = 0; i < dst.size(); ++i)
+    if (mask[i]) out.inlierPoints.push_back(dst[i]);
   out.found = true;
   return out;
 }

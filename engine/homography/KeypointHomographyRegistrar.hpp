@@ -21,7 +21,8 @@ struct KeypointRegistration {
   int frameKeypoints = 0;
   int matches = 0;  // mutual, ratio-tested descriptor matches
   int inliers = 0;
-  std::string failure;  // why found is false
+  std::vector<cv::Point2f> inlierPoints;  // the inliers' positions in the frame (when found)
+  std::string failure;                    // why found is false
 };
 
 class KeypointHomographyRegistrar {

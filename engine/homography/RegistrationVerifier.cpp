@@ -68,6 +68,20 @@ void texturedCandidates(const cv::Mat& gray, int margin, std::vector<cv::Point2f
 
 }  // namespace
 
+std::string RegistrationCheck::summary() const {
+  char text[200];
+  if (wholeOverlap)
+    std::snprintf(text, sizeof text,
+                  "%d of %d textured points confirm H over the whole overlap, off by up to %.1f px",
+                  confirmed, measurable, offsetPx);
+  else
+    std::snprintf(text, sizeof text,
+                  "%d of %d textured points confirm H in the inliers' region (%.0f%% of the "
+                  "overlap), off by up to %.1f px",
+                  confirmed, measurable, 100.0 * supportFraction, offsetPx);
+  return text;
+}
+
 RegistrationCheckParams RegistrationCheckParams::from(const HomographyTrackerParams& p) {
   RegistrationCheckParams r;
   r.minScore = p.verifyMinScore;
@@ -76,6 +90,7 @@ RegistrationCheckParams RegistrationCheckParams::from(const HomographyTrackerPar
   r.minConfirmedFraction = p.verifyMinFraction;
   r.minSpread = p.verifyMinSpread;
   r.maxOffsetAt320 = p.verifyMaxOffsetPx;
+  r.minSupportFraction = p.verifyMinSupport;
   return r;
 }
 
@@ -97,6 +112,8 @@ void RegistrationCheckParams::check() const {
     throw Error("registration check: minSpread must be in [0, 1]");
   if (!(maxOffsetAt320 > 0.0 && maxOffsetAt320 <= 100.0))
     throw Error("registration check: maxOffsetAt320 must be in (0, 100]");
+  if (!(minSupportFraction >= 0.0 && minSupportFraction <= 1.0))
+    throw Error("registration check: minSupportFraction must be in [0, 1]");
 }
 
 RegistrationVerifier::RegistrationVerifier(const cv::Mat& reference, RegistrationCheckParams params)
@@ -119,8 +136,8 @@ const std::vector<cv::Point2f>& RegistrationVerifier::points(int level) const {
   return levels_[static_cast<size_t>(level)].points;
 }
 
-RegistrationCheck RegistrationVerifier::check(const ImagePyramid& frame,
-                                              const cv::Matx33d& given) const {
+RegistrationCheck RegistrationVerifier::check(const ImagePyramid& frame, const cv::Matx33d& given,
+                                              const SupportRegion& support) const {
   RegistrationCheck out;
   const cv::Size size = frame.image().size();
   // The magnification (frame pixels per reference pixel) at the frame's centre.
@@ -148,7 +165,7 @@ RegistrationCheck RegistrationVerifier::check(const ImagePyramid& frame,
     ++frameLevel;
     ++referenceLevel;
   }
-  out = checkOnLevels(frame, H, frameLevel, referenceLevel);
+  out = checkOnLevels(frame, H, frameLevel, referenceLevel, support);
   // A frame blurred against the reference (defocus, motion: Oxford trees 1->6, bikes 1->6) keeps
   // its coarse texture only: when too few windows find their peak, the pair is compared once
   // more one level coarser on both sides. The tolerances are set per level in pixels at 320x240,
@@ -156,7 +173,8 @@ RegistrationCheck RegistrationVerifier::check(const ImagePyramid& frame,
   if (!out.passed && out.confirmedTooFew && referenceLevel + 1 < levels() &&
       frameLevel + 1 < kMaxLevels &&
       static_cast<double>(frame.level(frameLevel + 1).total()) >= kMinLevelPixels) {
-    RegistrationCheck coarser = checkOnLevels(frame, H, frameLevel + 1, referenceLevel + 1);
+    RegistrationCheck coarser =
+        checkOnLevels(frame, H, frameLevel + 1, referenceLevel + 1, support);
     if (coarser.passed) return coarser;
     out.failure += "; one level coarser: " + coarser.failure;
   }
@@ -165,12 +183,15 @@ RegistrationCheck RegistrationVerifier::check(const ImagePyramid& frame,
 
 RegistrationCheck RegistrationVerifier::checkOnLevels(const ImagePyramid& frame,
                                                       const cv::Matx33d& H, int frameLevel,
-                                                      int referenceLevel) const {
+                                                      int referenceLevel,
+                                                      const SupportRegion& fullSupport) const {
   RegistrationCheck out;
   out.frameLevel = frameLevel;
   out.referenceLevel = referenceLevel;
+  out.wholeOverlap = fullSupport.whole();
   const Level& ref = levels_[static_cast<size_t>(out.referenceLevel)];
   const cv::Mat& image = frame.level(out.frameLevel);
+  const SupportRegion support = fullSupport.scaled(1.0 / (1 << out.frameLevel));
   // Reference-level pixels -> frame-level pixels.
   const cv::Matx33d Hl = ImagePyramid::levelToImage(out.frameLevel).inv() * H *
                          ImagePyramid::levelToImage(out.referenceLevel);
@@ -179,7 +200,55 @@ RegistrationCheck RegistrationVerifier::checkOnLevels(const ImagePyramid& frame,
   const int radius = std::max(2, static_cast<int>(std::lround(params_.searchRadiusAt320 * s)));
   const double tolerance = params_.confirmToleranceAt320 * s;
   const int reach = radius + params_.halfWindow + 1;
-  // The most textured candidate per cell of the grid over the frame level.
+  const cv::Size refSize = ref.image.size();
+  // Frame-level point c sees the reference through H (in front, inside the reference).
+  const auto seesReference = [&](const cv::Point2d& c) {
+    const cv::Vec3d back = inv * cv::Vec3d(c.x, c.y, 1.0);
+    if (!(back[2] != 0)) return false;
+    const cv::Point2d p(back[0] / back[2], back[1] / back[2]);
+    const double w = Hl(2, 0) * p.x + Hl(2, 1) * p.y + Hl(2, 2);
+    return w > 0 && p.x >= -0.5 && p.y >= -0.5 && p.x <= refSize.width - 0.5 &&
+           p.y <= refSize.height - 0.5;
+  };
+  // The support's share of the overlap, on a grid over the frame level.
+  cv::Rect2f gridArea(0.f, 0.f, static_cast<float>(image.cols), static_cast<float>(image.rows));
+  if (!support.whole()) {
+    int seen = 0, inside = 0;
+    float gx0 = 1e30f, gy0 = 1e30f, gx1 = -1e30f, gy1 = -1e30f;
+    for (int j = 0; j <= kOverlapSamples * 2; ++j)
+      for (int i = 0; i <= kOverlapSamples * 2; ++i) {
+        const cv::Point2d c((image.cols - 1.0) * i / (kOverlapSamples * 2),
+                            (image.rows - 1.0) * j / (kOverlapSamples * 2));
+        if (!seesReference(c)) continue;
+        ++seen;
+        const cv::Point2f cf(static_cast<float>(c.x), static_cast<float>(c.y));
+        if (!support.contains(cf)) continue;
+        ++inside;
+        gx0 = std::min(gx0, cf.x);
+        gy0 = std::min(gy0, cf.y);
+        gx1 = std::max(gx1, cf.x);
+        gy1 = std::max(gy1, cf.y);
+      }
+    out.supportFraction = seen > 0 ? static_cast<double>(inside) / seen : 0.0;
+    // The point grid below spans the support's part of the overlap (its cells then keep about
+    // as many points as over a whole view).
+    if (inside > 0) {
+      const float cellX = (image.cols - 1.0f) / (kOverlapSamples * 2),
+                  cellY = (image.rows - 1.0f) / (kOverlapSamples * 2);
+      gridArea = cv::Rect2f(gx0 - cellX, gy0 - cellY, gx1 - gx0 + 2 * cellX, gy1 - gy0 + 2 * cellY);
+    }
+    if (out.supportFraction < params_.minSupportFraction) {
+      char text[160];
+      std::snprintf(text, sizeof text,
+                    "the inliers' region covers only %.0f%% of the overlap (at least %.0f%% "
+                    "needed)",
+                    100.0 * out.supportFraction, 100.0 * params_.minSupportFraction);
+      out.failure = text;
+      return out;
+    }
+  }
+  // The most textured candidate per cell of the grid over the frame level (over the support's
+  // part of it when there is a support region).
   std::vector<int> chosen(kGridCols * kGridRows, -1);
   std::vector<cv::Point2f> mapped(ref.points.size());
   for (size_t i = 0; i < ref.points.size(); ++i) {
@@ -191,9 +260,13 @@ RegistrationCheck RegistrationVerifier::checkOnLevels(const ImagePyramid& frame,
           q.y < image.rows - 1 - reach))
       continue;
     mapped[i] = cv::Point2f(static_cast<float>(q.x), static_cast<float>(q.y));
-    const int cell =
-        std::min(kGridRows - 1, static_cast<int>(q.y * kGridRows / image.rows)) * kGridCols +
-        std::min(kGridCols - 1, static_cast<int>(q.x * kGridCols / image.cols));
+    if (!support.contains(mapped[i])) continue;
+    const auto gridIndex = [](double v, double origin, double extent, int cells) {
+      return std::clamp(static_cast<int>((v - origin) * cells / std::max(extent, 1e-9)), 0,
+                        cells - 1);
+    };
+    const int cell = gridIndex(q.y, gridArea.y, gridArea.height, kGridRows) * kGridCols +
+                     gridIndex(q.x, gridArea.x, gridArea.width, kGridCols);
     int& c = chosen[static_cast<size_t>(cell)];
     if (c < 0 || ref.texture[i] > ref.texture[static_cast<size_t>(c)]) c = static_cast<int>(i);
   }
@@ -214,7 +287,8 @@ RegistrationCheck RegistrationVerifier::checkOnLevels(const ImagePyramid& frame,
   }
   if (out.measurable < params_.minConfirmed) {
     out.failure = "only " + std::to_string(out.measurable) +
-                  " textured reference points fall inside the frame";
+                  " textured reference points fall inside the frame" +
+                  (support.whole() ? "" : "'s inlier region");
     return out;
   }
   // The correlation peaks found, and the correction C (predicted -> peak) they agree on: a
@@ -288,21 +362,16 @@ RegistrationCheck RegistrationVerifier::checkOnLevels(const ImagePyramid& frame,
   // the points C is an extrapolation (measured: over the whole frame, the true homographies of
   // `experiment-homography --experiment verify` up to 2 px off, and a correct cold registration
   // of the shared bruegel clip 3.3 px); the spread rule keeps the confirmed part large.
-  const cv::Size refSize = ref.image.size();
   for (int j = 0; j <= kOverlapSamples; ++j)
     for (int i = 0; i <= kOverlapSamples; ++i) {
       const cv::Point2d c((image.cols - 1.0) * i / kOverlapSamples,
                           (image.rows - 1.0) * j / kOverlapSamples);
-      const cv::Vec3d back = inv * cv::Vec3d(c.x, c.y, 1.0);
-      // In front: the reference point maps forward with a positive third coordinate.
-      if (!(back[2] != 0)) continue;
-      const cv::Point2d p(back[0] / back[2], back[1] / back[2]);
-      const double w = Hl(2, 0) * p.x + Hl(2, 1) * p.y + Hl(2, 2);
-      if (!(w > 0) || p.x < -0.5 || p.y < -0.5 || p.x > refSize.width - 0.5 ||
-          p.y > refSize.height - 0.5)
-        continue;
+      // In front and inside the reference, within the confirmed points' box and the support.
+      if (!seesReference(c)) continue;
       if (!(c.x >= evidence.x && c.y >= evidence.y && c.x <= evidence.br().x &&
             c.y <= evidence.br().y))
+        continue;
+      if (!support.contains(cv::Point2f(static_cast<float>(c.x), static_cast<float>(c.y))))
         continue;
       const cv::Point2d moved = transferPoint(C, c);
       const double shift = std::hypot(moved.x - c.x, moved.y - c.y);

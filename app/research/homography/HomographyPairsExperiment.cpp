@@ -266,6 +266,7 @@ PairsResult runPairsExperiment(const PairsOptions& options) {
             const HomographyTrackResult r = t->track(p.frame);
             o.found = r.tracked;
             o.failure = r.failure;
+            o.check = r.check;
             o.stageMs = r.stageMs;
             H = r.H;
           } else {

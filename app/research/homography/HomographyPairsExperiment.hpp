@@ -41,6 +41,7 @@ struct PairOutcome {
   double milliseconds = 0.0;    // thread CPU time of the registration
   double wallMs = 0.0;          // wall-clock time of the registration
   std::string failure;          // reftrack: why it was not registered
+  std::string check;            // reftrack: what its registration check compared and found
   std::vector<std::pair<std::string, double>> stageMs;  // reftrack: per stage (wall clock)
 };
 

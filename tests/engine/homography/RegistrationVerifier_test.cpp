@@ -142,3 +142,42 @@ TEST(RegistrationVerifier, RefusesAHomographyDisplacedAlongABrickWall) {
     EXPECT_FALSE(c.failure.empty());
   }
 }
+
+// A view that is only partly the plane: the frame shows the reference (tilted view, its true H)
+// in its left 35% and an unrelated texture right of it (another facade, trees). Over the whole
+// overlap the check refuses the true H (the right part cannot confirm it); judged in the region
+// its inliers span (points on the left part), it passes and says so; a homography 10 px off is
+// refused there too (bound: 2 px at 320x240, 4 px here), and a region holding less than
+// minSupportFraction (15%) of the overlap is not a registration of the view.
+TEST(RegistrationVerifier, JudgesAPartlyPlanarViewInItsInliersRegion) {
+  const cv::Size size(640, 480);
+  const cv::Mat reference = test::texturedImage(size, 68);
+  const cv::Matx33d truth = test::tiltedView(size, 25.0, 0.95, 10.0);
+  cv::Mat frame = test::warpedBy(reference, truth);
+  const cv::Rect other(224, 0, 416, 480);
+  test::texturedImage(size, 69)(other).copyTo(frame(other));
+  const ImagePyramid pyramid(test::withNoise(frame, 2.0, 9));
+  const RegistrationVerifier verifier(reference);
+  const RegistrationCheck whole = verifier.check(pyramid, truth);
+  EXPECT_FALSE(whole.passed);
+  EXPECT_TRUE(whole.wholeOverlap);
+  // The inliers: frame points on the plane's part (a grid, as keypoint or corner inliers spread).
+  std::vector<cv::Point2f> inliers;
+  for (int y = 20; y < 470; y += 40)
+    for (int x = 20; x < 210; x += 40) inliers.emplace_back(x, y);
+  const SupportRegion support(inliers, supportMargin(size));
+  const RegistrationCheck plane = verifier.check(pyramid, truth, support);
+  EXPECT_TRUE(plane.passed) << plane.failure;
+  EXPECT_FALSE(plane.wholeOverlap);
+  EXPECT_GT(plane.supportFraction, 0.18);  // measured 0.23
+  EXPECT_LT(plane.supportFraction, 0.35);
+  EXPECT_NE(plane.summary().find("in the inliers' region"), std::string::npos) << plane.summary();
+  const double angles[4] = {30, 120, 210, 300};
+  const RegistrationCheck off =
+      verifier.check(pyramid, displaced(truth, size, 10.0, angles), support);
+  EXPECT_FALSE(off.passed);
+  const SupportRegion patch({{100, 100}, {150, 100}, {150, 150}, {100, 150}}, 10.0);
+  const RegistrationCheck small = verifier.check(pyramid, truth, patch);
+  EXPECT_FALSE(small.passed);
+  EXPECT_NE(small.failure.find("covers only"), std::string::npos) << small.failure;
+}
