@@ -220,6 +220,21 @@ TwoViewMotion TwoViewMotionEstimator::estimate(const TwoViewKeyframe& first,
   }
   const int inFront = static_cast<int>(angles.size());
   if (inFront < p.minInliers) {
+    // No motion puts the points in front: a move too small for the essential matrix to tell
+    // (on a plane it is then ambiguous). The parallax a rotation does not explain says how
+    // small.
+    std::vector<double> residual;
+    for (std::size_t k = 0; k < ra.size(); ++k)
+      residual.push_back(std::acos(std::clamp(rb[k].dot(Rrot * ra[k]), -1.0, 1.0)) * kRadToDeg);
+    m.medianParallaxDeg = median(residual);
+    m.medianParallaxPx = m.medianParallaxDeg / kRadToDeg * camera_.fx();
+    if (m.medianParallaxDeg < p.minParallaxDeg) {
+      m.refusal = "too little parallax: beyond a rotation, the scene is seen " +
+                  fixed(m.medianParallaxDeg, 2) + " deg apart from the two places (about " +
+                  fixed(m.medianParallaxPx, 1) + " px, median; at least " +
+                  fixed(p.minParallaxDeg, 2) + " deg needed); move the camera farther sideways";
+      return m;
+    }
     m.refusal = "the camera hardly moved: the motion the matches give puts only " +
                 std::to_string(inFront) + " of the " + std::to_string(m.inliers) +
                 " in front of both cameras (at least " + std::to_string(p.minInliers) +
