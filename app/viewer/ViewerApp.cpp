@@ -256,8 +256,10 @@ struct FrameLoop {
   OverlayCompositor compositor;
   std::unique_ptr<VideoRecorder> recorder;
   std::unique_ptr<LiveCalibration> calibration;  // with --calibrate
-  std::unique_ptr<LiveMapping> mapping;          // with --marker / --board
-  std::optional<TumTrajectory> trajectory;       // the tracked poses (--trajectory)
+  std::unique_ptr<LiveMapping> mapping;          // with --marker / --board / --unprepared
+  // A map built unprepared: its world -> the truth's (session.truth), by its reference 0.
+  std::optional<RigidPose> truthAnchor;
+  std::optional<TumTrajectory> trajectory;  // the tracked poses (--trajectory)
   Frame current;
   TrackingResult result;
   Clock::time_point lastProcessed{};
@@ -346,10 +348,13 @@ struct FrameLoop {
     if (session.truth && result.worldToCamera) {
       const TrackingResult truth =
           session.truth->process(current.image, current.index, current.timestamp);
+      // A map of an unprepared scene has a world of its own: the truth is carried into it by
+      // the first capture's view (truthAnchor), as `eval --anchor-map` does.
       if (truth.worldToCamera)
         stats.trueErrorPx =
-            overlayErrorPx(session.camera, *truth.worldToCamera, *result.worldToCamera,
-                           state.settings.overlay.cubeWorldVertices());
+            overlayErrorPx(session.camera,
+                           truthAnchor ? *truth.worldToCamera * *truthAnchor : *truth.worldToCamera,
+                           *result.worldToCamera, state.settings.overlay.cubeWorldVertices());
     }
     if (stats.predictedErrorPx) {
       predictedSumPx += *stats.predictedErrorPx;
@@ -391,6 +396,15 @@ struct FrameLoop {
   void useMap(MultiReferenceMap map) {
     TrackerParams params = state.settings.tracker;
     params.mode = TrackingMode::SixDof;
+    // Unprepared: the map's world -> the truth's, by the first capture (its reference 0):
+    // X_truth = T0_truth^-1 T0_map X_map.
+    truthAnchor.reset();
+    if (state.map.unprepared && session.truth && !state.map.captures.empty()) {
+      const MapCapture& first = state.map.captures.front();
+      const TrackingResult at =
+          session.truth->process(cv::Mat(), first.frameIndex, first.timestamp);
+      if (at.worldToCamera) truthAnchor = at.worldToCamera->inverse() * map.views.front().T;
+    }
     try {
       auto tracker = std::make_unique<PoseFrameTracker>(std::move(map), params);
       tracker->applyParams(params);
