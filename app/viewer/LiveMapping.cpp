@@ -57,7 +57,7 @@ LiveMapping::LiveMapping(PinholeCamera camera, MapExtenderParams params,
   params_.check();
   camera_.check();
   motion_.emplace(camera_, unprepared_);  // checks unprepared_
-  state.fiducial = "none: the scene's own matches and the baseline (unprepared)";
+  state.fiducial = "none (unprepared: own matches)";
   state.unprepared = true;
   report(state);
 }

@@ -105,7 +105,7 @@ TEST(MapPanel, UnpreparedOffersTheBaselineField) {
   MapState state;
   state.active = true;
   state.unprepared = true;
-  state.fiducial = "none: the scene's own matches and the baseline (unprepared)";
+  state.fiducial = "none (unprepared: own matches)";
   state.captures = {MapCapture{0, 0.0, "matches", -1.0, false, "", 0}};
   state.motion = "420 keypoint matches, 400 fit the essential matrix";
   state.motionUsable = true;
