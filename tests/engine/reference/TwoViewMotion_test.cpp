@@ -1,8 +1,8 @@
 // TwoViewMotion on exact views of a textured plane (PlanarTestScene, 600 px focal length, ~1 m)
 // and on real frames: a sideways move is measured (its rotation and direction), a pure rotation,
 // too small a move, a textureless view and two views of different places are refused with what
-// to do; a real frame turned on the spot (the ViSP clip's frame 0 through K R K^-1) is refused as
-// a rotation.
+// to do; a real frame turned on the spot (the ViSP clip's frame 0 through K R K^-1) and two real
+// desk frames 1.6 mm apart are refused as rotations.
 #include "engine/reference/TwoViewMotion.hpp"
 
 #include <gtest/gtest.h>
@@ -150,6 +150,36 @@ TEST(TwoViewMotionRealFrames, ARealFrameTurnedOnTheSpotIsRefused) {
   const TwoViewMotion real = TwoViewMotionEstimator(camera).estimate(first, moved);
   EXPECT_TRUE(real.usable()) << real.refusal;
   EXPECT_LT(real.rotationShare, 0.3);
+}
+
+}  // namespace
+}  // namespace reftrack
+
+namespace reftrack {
+namespace {
+
+// The real desk clip's frames 0 and 2 (the camera moved 1.6 mm and turned 0.5 degrees between
+// them, 0.3 m from the desk): refused, a rotation explaining most matches or too little
+// parallax; frames 0 and 40 (3.95 cm) are a usable pair.
+TEST(TwoViewMotionRealFrames, RealFramesBarelyApartAreRefused) {
+  const std::optional<std::filesystem::path> data = test::sharedDataDir();
+  const std::filesystem::path clip = data ? *data / "desk-chessboard" : std::filesystem::path();
+  if (!data || !std::filesystem::exists(clip / "frames" / "000040.jpg"))
+    GTEST_SKIP() << "../shared/data/desk-chessboard not available";
+  const PinholeCamera camera = PinholeCamera::load(clip / "camera.yml");
+  const auto frame = [&](const char* name) {
+    return cv::imread((clip / "frames" / name).string(), cv::IMREAD_COLOR);
+  };
+  const TwoViewMotionEstimator estimator(camera);
+  const TwoViewMotion near = estimator.estimate(frame("000000.jpg"), frame("000002.jpg"));
+  std::printf("desk frames 0 and 2: %s\n", near.refusal.c_str());
+  EXPECT_FALSE(near.usable());
+  EXPECT_TRUE(near.refusal.find("turned but hardly moved") != std::string::npos ||
+              near.refusal.find("too little parallax") != std::string::npos)
+      << near.refusal;
+  const TwoViewMotion apart = estimator.estimate(frame("000000.jpg"), frame("000040.jpg"));
+  EXPECT_TRUE(apart.usable()) << apart.refusal;
+  EXPECT_GT(apart.medianParallaxDeg, 3.0);  // measured 5.1 deg
 }
 
 }  // namespace
