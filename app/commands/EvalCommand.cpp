@@ -10,6 +10,8 @@
 #include "engine/core/Error.hpp"
 #include "engine/dataset/DatasetGroundTruth.hpp"
 #include "engine/evaluation/TrajectoryEvaluator.hpp"
+#include "engine/evaluation/TrajectoryInterpolation.hpp"
+#include "engine/reference/MultiReferenceMap.hpp"
 
 namespace reftrack::app {
 
@@ -17,12 +19,22 @@ namespace {
 
 struct EvalOptions {
   std::string gt, est, camera, plotDir, align = "none";
+  // --anchor-map: the estimate's world is this map's, whose reference 0 was taken at
+  // anchorTime of the ground truth; --cube-ahead: the cube centred that far in front of it.
+  std::string anchorMap;
+  double anchorTime = 0.0, cubeAhead = 0.0;
+  std::vector<double> cubeAt;
   bool json = false, noPlots = false;
   double maxGap = 0.05;  // s; ground-truth samples farther apart are not interpolated
   EvaluationParams params;
 };
 
+std::string number(double v);
+
 std::string alignmentText(const TrajectoryEvaluation& ev, const EvalOptions& o) {
+  if (!o.anchorMap.empty())
+    return "anchored: the map '" + o.anchorMap + "' carried into the ground truth's world by " +
+           "its reference 0, at the truth's pose of t = " + number(o.anchorTime) + " s";
   if (!ev.aligned)
     return "none (the default; --align se3|sim3|se3-views aligns the estimate first)";
   char scale[64];
@@ -154,10 +166,31 @@ std::vector<std::string> writePlots(const TrajectoryEvaluation& ev, const EvalOp
   return written;
 }
 
+// Carries the estimate from the map's world into the ground truth's by the map's reference 0:
+// X_gt = T0_gt^-1 T0_map X_map (T0_gt the truth at the anchor time), so each estimated pose is
+// compared with the truth as seen from reference 0's view, whatever world the map chose.
+// With --cube-ahead, the cube is centred that far along reference 0's optical axis.
+void anchorToMap(const GroundTruth& gt, TumTrajectory& est, EvalOptions& o) {
+  if (o.anchorMap.empty()) return;
+  const MultiReferenceMap map = MultiReferenceMap::load(o.anchorMap);
+  const TumTrajectory at = interpolateTrajectory(gt.trajectory, {o.anchorTime}, o.maxGap);
+  if (at.poses.empty())
+    throw Error("--anchor-time " + number(o.anchorTime) + ": the ground truth has no pose there");
+  const RigidPose truth0 = at.poses.front().worldToCamera;
+  const RigidPose mapToTruth = truth0.inverse() * map.views.front().T;
+  const RigidPose truthToMap = mapToTruth.inverse();
+  for (StampedPose& p : est.poses) p.worldToCamera = p.worldToCamera * truthToMap;
+  if (o.cubeAhead > 0.0)
+    o.params.cubeBase = truth0.inverse() * Eigen::Vector3d(0.0, 0.0, o.cubeAhead) -
+                        Eigen::Vector3d(0.0, 0.0, 0.5 * o.params.cubeSide);
+}
+
 void runEval(EvalOptions o) {
   o.params.alignment = parseTrajectoryAlignment(o.align);
+  if (o.cubeAt.size() == 3) o.params.cubeBase = {o.cubeAt[0], o.cubeAt[1], o.cubeAt[2]};
   const GroundTruth gt = loadGroundTruth(o.gt, o.maxGap);
-  const TumTrajectory est = TumTrajectory::load(o.est);
+  TumTrajectory est = TumTrajectory::load(o.est);
+  anchorToMap(gt, est, o);
   std::unique_ptr<PinholeCamera> camera;
   if (!o.camera.empty()) camera = std::make_unique<PinholeCamera>(PinholeCamera::load(o.camera));
   const TrajectoryEvaluation ev = evaluateTrajectory(gt.trajectory, est, o.params, camera.get());
@@ -209,10 +242,47 @@ CommandRegistration registerEvalCommand(CLI::App& parent) {
                   "and three points of each camera's view (orientations count too)")
       ->capture_default_str()
       ->check(CLI::IsMember({"none", "se3", "sim3", "se3-views"}));
+  CLI::Option* cubeAt =
+      sub->add_option("--cube-at", options->cubeAt,
+                      "X,Y,Z: the centre of the cube's base (ground-truth world, m; default the "
+                      "origin); it stands along world +z")
+          ->delimiter(',')
+          ->expected(3)
+          ->check(CLI::Validator(
+              [](std::string& v) -> std::string {
+                double x = 0.0;
+                return CLI::detail::lexical_cast(v, x) && std::isfinite(x)
+                           ? ""
+                           : "must be a finite number, got '" + v + "'";
+              },
+              "NUMBER"));
+  CLI::Option* anchorMap =
+      sub->add_option("--anchor-map", options->anchorMap,
+                      "the map (folder) the estimate was tracked on: its world is carried into "
+                      "the ground truth's by its reference 0 (X_gt = T0_gt^-1 T0_map X_map), no "
+                      "fitted alignment; for maps in a world of their own (prepare --unprepared)")
+          ->check(CLI::ExistingDirectory);
+  CLI::Option* anchorTime =
+      sub->add_option("--anchor-time", options->anchorTime,
+                      "with --anchor-map: the ground-truth time (s) of reference 0's frame")
+          ->check(CLI::Range(0.0, 1e12));
+  CLI::Option* cubeAhead =
+      sub->add_option("--cube-ahead", options->cubeAhead,
+                      "with --anchor-map: the cube centred this far (m) along reference 0's "
+                      "optical axis, its faces along the world axes")
+          ->check(CLI::Range(1e-6, 1e6));
+  anchorMap->needs(anchorTime);
+  anchorTime->needs(anchorMap);
+  cubeAhead->needs(anchorMap)->excludes(cubeAt);
   sub->add_flag("--json", options->json, "print one JSON object instead of text");
   sub->add_option("--plots", options->plotDir,
                   "folder for EST.error.png and EST.topview.png (default: beside --est)");
   sub->add_flag("--no-plots", options->noPlots, "write no plots");
+  sub->callback([options, anchorMap] {
+    if (anchorMap->count() > 0 && options->align != "none")
+      throw CLI::ValidationError("--anchor-map",
+                                 "the anchor fixes the alignment: give no --align with it");
+  });
   return {sub, [options] { runEval(*options); }};
 }
 

@@ -1,7 +1,8 @@
 // `reftrack params`: every key of the parameter file `--params` accepts (the tracking parameters
 // and the viewer's `overlay` section) — dotted name, default, allowed values, one-line meaning —
 // from the same fields() lists that read and check them; `--write FILE` writes the defaults as a
-// commented YAML file to edit.
+// commented YAML file to edit. `reftrack params unprepared` lists (and writes) the section
+// `prepare --unprepared --params` reads, which the tracking parameters leave out.
 #include <algorithm>
 #include <cstdio>
 #include <memory>
@@ -14,6 +15,7 @@
 #include "engine/config/FieldDescriber.hpp"
 #include "engine/config/KnownKeys.hpp"
 #include "engine/config/TrackerParams.hpp"
+#include "engine/config/UnpreparedMapParams.hpp"
 
 namespace reftrack::app {
 
@@ -31,6 +33,10 @@ std::vector<ParamDescription> everyParam() {
   return keys;
 }
 
+// Keys of `prepare --unprepared --params` only (not of the tracking parameter file): listed
+// when a filter names them.
+std::vector<ParamDescription> prepareOnlyParams() { return describeParams(UnpreparedMapParams{}); }
+
 // A key matches its dotted name, its name alone and any section it lies in.
 bool matches(const ParamDescription& d, const std::string& filter) {
   return d.key == filter || d.name() == filter || d.key.rfind(filter + ".", 0) == 0;
@@ -39,6 +45,8 @@ bool matches(const ParamDescription& d, const std::string& filter) {
 std::vector<ParamDescription> selected(const std::vector<std::string>& filters) {
   std::vector<ParamDescription> keys = everyParam();
   if (filters.empty()) return keys;
+  const std::vector<ParamDescription> prepareOnly = prepareOnlyParams();
+  keys.insert(keys.end(), prepareOnly.begin(), prepareOnly.end());
   std::erase_if(keys, [&](const ParamDescription& d) {
     return std::none_of(filters.begin(), filters.end(),
                         [&](const std::string& f) { return matches(d, f); });
@@ -46,9 +54,15 @@ std::vector<ParamDescription> selected(const std::vector<std::string>& filters) 
   return keys;
 }
 
+bool isPrepareOnly(const ParamDescription& d) {
+  return d.section() == UnpreparedMapParams::kSection;
+}
+
 // Throws a usage error naming the nearest key or section when a filter matches nothing.
 void checkFilters(const std::vector<std::string>& filters) {
-  const std::vector<ParamDescription> keys = everyParam();
+  std::vector<ParamDescription> keys = everyParam();
+  const std::vector<ParamDescription> prepareOnly = prepareOnlyParams();
+  keys.insert(keys.end(), prepareOnly.begin(), prepareOnly.end());
   std::vector<std::string> names;
   for (const ParamDescription& d : keys) {
     names.push_back(d.key);
@@ -68,9 +82,15 @@ void printTable(const std::vector<ParamDescription>& keys) {
     valueWidth = std::max(valueWidth, static_cast<int>(d.value.size()));
     allowedWidth = std::max(allowedWidth, static_cast<int>(d.allowed.size()));
   }
-  std::printf(
-      "Keys of the parameter file `--params` takes (track, view, extend); a key left out keeps\n"
-      "its default. `reftrack params --write FILE` writes them as a commented file to edit.\n\n");
+  if (std::all_of(keys.begin(), keys.end(), isPrepareOnly))
+    std::printf(
+        "Keys of the parameter file `prepare --unprepared --params` takes (a map from two views\n"
+        "and one distance); a key left out keeps its default.\n\n");
+  else
+    std::printf(
+        "Keys of the parameter file `--params` takes (track, view, extend); a key left out keeps\n"
+        "its default. `reftrack params --write FILE` writes them as a commented file to edit.\n"
+        "`reftrack params unprepared`: the keys of `prepare --unprepared --params`.\n\n");
   std::printf("  %-*s  %-*s  %-*s  %s\n", keyWidth, "KEY", valueWidth, "DEFAULT", allowedWidth,
               "ALLOWED", "MEANING");
   std::string section = "\n";  // none yet
@@ -90,13 +110,19 @@ void runParams(const ParamsOptions& o) {
     printTable(keys);
     return;
   }
+  const bool prepareOnly = std::all_of(keys.begin(), keys.end(), isPrepareOnly);
   writeCommentedParamsFile(
       o.write, keys,
-      "reftrack " REFTRACK_VERSION
-      " parameters: the defaults, written by `reftrack params "
-      "--write`.\nThe file `--params` takes (track, view, extend). A key left out keeps its "
-      "default:\nkeep only the keys you change. Each key's comment: its meaning (the values "
-      "allowed).");
+      prepareOnly ? "reftrack " REFTRACK_VERSION
+                    " parameters: the defaults, written by `reftrack params --write`.\nThe "
+                    "file `prepare --unprepared --params` takes. A key left out keeps its "
+                    "default:\nkeep only the keys you change. Each key's comment: its meaning "
+                    "(the values allowed)."
+                  : "reftrack " REFTRACK_VERSION
+                    " parameters: the defaults, written by `reftrack params "
+                    "--write`.\nThe file `--params` takes (track, view, extend). A key left out "
+                    "keeps its default:\nkeep only the keys you change. Each key's comment: its "
+                    "meaning (the values allowed).");
   std::printf("wrote %s: %zu keys, their defaults\n", o.write.c_str(), keys.size());
 }
 
@@ -110,7 +136,16 @@ CommandRegistration registerParamsCommand(CLI::App& parent) {
   sub->add_option("--write", options->write,
                   "write the defaults to FILE as commented YAML that `--params` accepts")
       ->type_name("FILE");
-  sub->callback([options] { checkFilters(options->filters); });
+  sub->callback([options] {
+    checkFilters(options->filters);
+    const std::vector<ParamDescription> keys = selected(options->filters);
+    if (!options->write.empty() && std::any_of(keys.begin(), keys.end(), isPrepareOnly) &&
+        !std::all_of(keys.begin(), keys.end(), isPrepareOnly))
+      throw CLI::ValidationError("--write",
+                                 "the section unprepared belongs to `prepare --params`, the "
+                                 "others to `track/view/extend --params`: write them to two "
+                                 "files");
+  });
   return {sub, [options] { runParams(*options); }};
 }
 

@@ -1,7 +1,8 @@
 // `reftrack prepare`: the offline preparation (paper Sec. 2, 3.3) for N >= 2 references — poses
-// from an ArUco marker (or from a TUM file of known poses), corners of every reference,
-// epipolar-guided matches and triangulation (Eq. 9, Eq. 10) per pair, merged into multi-view
-// points — written as a version-3 reference map folder.
+// from an ArUco marker (or from a TUM file of known poses, or, `--unprepared`, from the
+// references' own matches and one known distance), corners of every reference, epipolar-guided
+// matches and triangulation (Eq. 9, Eq. 10) per pair, merged into multi-view points — written as
+// a version-3 reference map folder.
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -16,11 +17,13 @@
 #include "app/sources/FrameSourceFactory.hpp"
 #include "app/sources/InputCamera.hpp"
 #include "app/sources/StampedImageSource.hpp"
+#include "engine/config/ConfigValue.hpp"
 #include "engine/core/Error.hpp"
 #include "engine/dataset/DatasetGroundTruth.hpp"
 #include "engine/evaluation/TrajectoryInterpolation.hpp"
 #include "engine/geometry/PinholeCamera.hpp"
 #include "engine/geometry/TumTrajectory.hpp"
+#include "engine/mapping/UnpreparedInitializer.hpp"
 #include "engine/reference/MarkerSpec.hpp"
 #include "engine/reference/MultiReferencePreparer.hpp"
 
@@ -33,7 +36,32 @@ struct PrepareOptions {
   std::vector<std::string> refs;
   std::vector<int> refFrames;       // with --input: the frames that become references
   std::vector<std::string> images;  // resolved at parse time: --ref..., --refs or --ref-a/--ref-b
+  // --unprepared: the poses from the references' own matches, the scale from --baseline or
+  // --distance with --distance-points (x1, y1, x2, y2 in the first reference).
+  bool unprepared = false;
+  double baseline = 0.0, distance = 0.0;
+  std::vector<double> distancePoints;
 };
+
+// A length in metres: a usage error unless a finite number greater than 0.
+const CLI::Validator kPositiveMetres(
+    [](std::string& v) -> std::string {
+      double x = 0.0;
+      if (!CLI::detail::lexical_cast(v, x) || !std::isfinite(x) || !(x > 0.0))
+        return "must be a finite length in metres greater than 0, got '" + v + "'";
+      return "";
+    },
+    "METRES");
+
+// A pixel coordinate: a finite number.
+const CLI::Validator kFiniteNumber(
+    [](std::string& v) -> std::string {
+      double x = 0.0;
+      if (!CLI::detail::lexical_cast(v, x) || !std::isfinite(x))
+        return "must be a finite number, got '" + v + "'";
+      return "";
+    },
+    "NUMBER");
 
 bool isDatasetSpec(const std::string& s) {
   return s.rfind("tum:", 0) == 0 || s.rfind("euroc:", 0) == 0;
@@ -187,14 +215,71 @@ void printSummary(const MultiPreparation& p, const std::vector<std::string>& nam
               MultiReferenceMap::kFormatVersion, p.map.size());
 }
 
+// What an unprepared map's preparation printed beyond a posed one's: the motion, the rounds, the
+// plane and the scale, and the references added to the first two.
+void printUnprepared(const UnpreparedMapReport& r) {
+  std::printf("two-view motion of references 0-1: %s\n", r.motion.summary().c_str());
+  std::printf("refined from %d start(s); the best fit from the %s:\n", r.starts, r.start.c_str());
+  for (std::size_t i = 0; i < r.rounds.size(); ++i) {
+    const UnpreparedRound& k = r.rounds[i];
+    std::printf(
+        "round %zu: %d points from the corner matches, reprojection RMS %.3f -> %.3f px; the "
+        "refinement turned reference 1 by %.3f deg and its direction by %.3f deg\n",
+        i + 1, k.points, k.rmsBeforePx, k.rmsAfterPx, k.turnedDeg, k.directionDeg);
+  }
+  if (r.onPlane)
+    std::printf(
+        "world frame: on the dominant plane (%d of the %d points near the scene's middle within "
+        "its band, RMS %.2f mm), origin at their centre, z toward the cameras\n",
+        r.planePoints, r.planeConsideredPoints, 1000.0 * r.planeRmsMetres);
+  else
+    std::printf("world frame: reference 0's camera (no dominant plane: %s)\n", r.planeNote.c_str());
+  std::printf("scale: %s; baseline of references 0-1 %.4f m", r.scale.toString().c_str(),
+              r.baselineMetres);
+  if (r.scale.kind == MetricScale::Kind::Distance)
+    std::printf("; the points on the plane at (%.4f, %.4f, %.4f) and (%.4f, %.4f, %.4f) m",
+                r.distanceFirst.x(), r.distanceFirst.y(), r.distanceFirst.z(), r.distanceSecond.x(),
+                r.distanceSecond.y(), r.distanceSecond.z());
+  std::printf("\n");
+  for (const AddedReference& a : r.added)
+    std::printf(
+        "reference %d added as `extend` adds one: matched to %zu reference(s), %d points "
+        "extended, %d new; adjustment RMS %.3f -> %.3f px\n",
+        a.view, a.matchedViews.size(), a.pointsExtended, a.pointsAdded, a.adjustment.initialRmsPx,
+        a.adjustment.finalRmsPx);
+  if (r.closingAdjustment)
+    std::printf("closing bundle adjustment: RMS %.3f -> %.3f px over %d observations\n",
+                r.closingAdjustment->initialRmsPx, r.closingAdjustment->finalRmsPx,
+                r.closingAdjustment->observations);
+  std::fflush(stdout);
+}
+
+// `--params` of an unprepared preparation: the preparation's sections and `unprepared`,
+// `extension`, `bundle_adjustment` (for the references after the first two).
+void loadUnpreparedParams(const std::string& file, MapExtenderParams& extender,
+                          UnpreparedMapParams& unprepared) {
+  if (file.empty()) return;
+  readParameterFile(file, [&](const YamlNode& root) {
+    unprepared.read(root["unprepared"]);
+    extender.extension.read(root["extension"]);
+    extender.bundleAdjustment.read(root["bundle_adjustment"]);
+    extender.preparation.read(root, {"unprepared", "extension", "bundle_adjustment"});
+  });
+}
+
 void runPrepare(PrepareOptions o) {
   const std::optional<PinholeCamera> inputCamera =
       o.camera.empty() ? cameraFromInput(o.input) : std::nullopt;
   const PinholeCamera camera = inputCamera ? *inputCamera : PinholeCamera::load(o.camera);
   const std::string cameraName =
       inputCamera ? "the sensor.yaml of '" + o.input + "'" : "camera file '" + o.camera + "'";
-  const ReferencePreparerParams params =
-      o.params.empty() ? ReferencePreparerParams{} : ReferencePreparerParams::load(o.params);
+  MapExtenderParams extenderParams;
+  UnpreparedMapParams unpreparedParams;
+  if (o.unprepared) loadUnpreparedParams(o.params, extenderParams, unpreparedParams);
+  const ReferencePreparerParams params = o.unprepared ? extenderParams.preparation
+                                         : o.params.empty()
+                                             ? ReferencePreparerParams{}
+                                             : ReferencePreparerParams::load(o.params);
   std::vector<ReferenceImage> images;
   std::vector<double> timestamps;
   if (!o.input.empty()) {
@@ -215,7 +300,28 @@ void runPrepare(PrepareOptions o) {
   const MultiReferencePreparer preparer(camera, params);
   const auto progress = [&](const ReferencePairReport& r) { printPair(r, o.images); };
   std::optional<MultiPreparation> prepared;
-  if (!o.marker.empty()) {
+  if (o.unprepared) {
+    const MetricScale scale =
+        o.baseline > 0.0
+            ? MetricScale::baseline(o.baseline)
+            : MetricScale::distance(o.distance, {o.distancePoints[0], o.distancePoints[1]},
+                                    {o.distancePoints[2], o.distancePoints[3]});
+    extenderParams.tracker.mode = TrackingMode::SixDof;
+    const UnpreparedInitializer initializer(camera, extenderParams, unpreparedParams);
+    UnpreparedMap built = initializer.build(
+        images, scale,
+        [](const std::string& step) { std::printf("unprepared: %s\n", step.c_str()); }, progress);
+    printUnprepared(built.report);
+    prepared = std::move(built.prepared);
+    // The references added after the first two, in the summary's per-reference lines.
+    MultiPreparationReport& r = prepared->report;
+    for (std::size_t v = r.corners.size(); v < prepared->map.views.size(); ++v) {
+      r.corners.push_back(static_cast<int>(prepared->map.views[v].corners.size()));
+      r.markerRmsPx.push_back(std::nullopt);
+    }
+    r.observationHistogram.assign(prepared->map.views.size() + 1, 0);
+    for (const MapPoint& p : prepared->map.points) ++r.observationHistogram[p.observations.size()];
+  } else if (!o.marker.empty()) {
     prepared = preparer.prepare(images, MarkerSpec::parse(o.marker), progress);
   } else if (!o.input.empty()) {
     // The ground-truth pose at each reference frame's timestamp (interpolated).
@@ -260,7 +366,15 @@ CommandRegistration registerPrepareCommand(CLI::App& parent) {
       "and OUT/reference_00.png, reference_01.png, ...\n"
       "From a recorded sequence: --input SRC --ref-frames I,J,... takes the references from\n"
       "SRC (e.g. tum:DIR or euroc:DIR) and --poses the ground truth at their timestamps\n"
-      "(a TUM file, tum:DIR or euroc:DIR, interpolated); euroc: inputs bring their camera.");
+      "(a TUM file, tum:DIR or euroc:DIR, interpolated); euroc: inputs bring their camera.\n"
+      "No marker, no poses (--unprepared): the first two references' relative pose comes from\n"
+      "their own keypoint matches (essential matrix), refined from their corner matches; the\n"
+      "world lies on the scene's dominant plane (origin at its centre, z toward the cameras, x\n"
+      "along the first camera's x), and one length you know gives the metres: --baseline M (how\n"
+      "far the camera moved between the two) or --distance M --distance-points X1,Y1,X2,Y2 (two\n"
+      "points of the plane marked in the first reference). A pure rotation, too little parallax\n"
+      "or a textureless view is refused with what to do. Further references are located in that\n"
+      "map and added as `extend` adds them.");
   CLI::Option* cameraOption =
       sub->add_option("--camera", options->camera,
                       "camera file (camera.yml; default for euroc: inputs: their sensor.yaml)")
@@ -305,16 +419,48 @@ CommandRegistration registerPrepareCommand(CLI::App& parent) {
               "FILE|tum:DIR|euroc:DIR"));
   marker->excludes(poses);
   poses->excludes(marker);
+  CLI::Option* unprepared = sub->add_flag(
+      "--unprepared", options->unprepared,
+      "no marker, no poses: the references' poses from their own matches (the first two), the "
+      "world on the scene's dominant plane, the scale from --baseline or --distance");
+  CLI::Option* baseline =
+      sub->add_option("--baseline", options->baseline,
+                      "--unprepared: how far the camera moved between the first two references "
+                      "(metres)")
+          ->check(kPositiveMetres);
+  CLI::Option* distance =
+      sub->add_option("--distance", options->distance,
+                      "--unprepared: the distance between the two --distance-points on the "
+                      "scene's dominant plane (metres)")
+          ->check(kPositiveMetres);
+  CLI::Option* distancePoints =
+      sub->add_option(
+             "--distance-points", options->distancePoints,
+             "--unprepared: X1,Y1,X2,Y2, two points of the first reference's image (pixels) "
+             "on the scene's dominant plane, --distance apart")
+          ->delimiter(',')
+          ->expected(4)
+          ->check(kFiniteNumber);
+  unprepared->excludes(marker)->excludes(poses);
+  baseline->needs(unprepared)->excludes(distance);
+  distance->needs(unprepared)->needs(distancePoints);
+  distancePoints->needs(distance);
   sub->add_option("--params", options->params,
-                  "preparation parameters (YAML: corners, matching, marker, preparation)")
+                  "preparation parameters (YAML: corners, matching, marker, preparation; with "
+                  "--unprepared also unprepared, extension, bundle_adjustment)")
       ->check(CLI::ExistingFile);
   sub->add_option("--out", options->out, "output folder of the reference map")->required();
-  sub->callback([options, marker, poses, ref, refs, refA, input, cameraOption] {
+  sub->callback([options, marker, poses, ref, refs, refA, input, cameraOption, unprepared, baseline,
+                 distance] {
     PrepareOptions& o = *options;
     if (ref->count() == 0 && refs->count() == 0 && refA->count() == 0 && input->count() == 0)
       throw CLI::RequiredError("--ref (repeated), --refs, --ref-a/--ref-b or --input");
-    if (marker->count() == 0 && poses->count() == 0)
-      throw CLI::RequiredError("one of --marker or --poses");
+    if (unprepared->count() > 0 && baseline->count() == 0 && distance->count() == 0)
+      throw CLI::RequiredError(
+          "--unprepared needs the scale: --baseline M (how far the camera moved between the first "
+          "two references) or --distance M with --distance-points X1,Y1,X2,Y2");
+    if (unprepared->count() == 0 && marker->count() == 0 && poses->count() == 0)
+      throw CLI::RequiredError("one of --marker, --poses or --unprepared");
     if (cameraOption->count() == 0 && o.input.rfind("euroc:", 0) != 0)
       throw CLI::RequiredError("--camera (only euroc: inputs bring their camera)");
     if (input->count() > 0) {

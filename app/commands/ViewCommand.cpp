@@ -116,7 +116,12 @@ CommandRegistration registerViewCommand(CLI::App& parent) {
       "the marker / board, or by tracking once a map exists), Build map (prepare's pipeline),\n"
       "Add to map (extend's), Save map. Headless: --capture-at I,J,... captures those frames,\n"
       "builds the map, tracks the whole input on it from its first frame, and writes --map-out\n"
-      "and --trajectory.");
+      "and --trajectory.\n"
+      "--unprepared opens the Map panel without a marker or board: capture two views from two\n"
+      "places (the panel shows the parallax it sees and refuses a pure rotation, too little\n"
+      "parallax or a textureless view), type how far the camera moved (Baseline, metres), Build\n"
+      "map: the poses come from the views' own matches, the world lies on the scene's dominant\n"
+      "plane. Headless: --unprepared --baseline M --capture-at I,J.");
   sub->add_option("--input", o.input, "Frame source SRC")->required();
   sub->add_option("--camera", o.camera, "camera.yml (required unless SRC is sim: or euroc:)")
       ->check(CLI::ExistingFile);
@@ -195,9 +200,27 @@ CommandRegistration registerViewCommand(CLI::App& parent) {
                       "charuco:DICT:SQXxSQY:SQUARE_M:MARKER_M")
           ->check(parsingValidator<CalibrationBoard>("BOARD"));
   marker->excludes(board);
+  CLI::Option* unprepared = sub->add_flag(
+      "--unprepared", o.mapUnprepared,
+      "Map panel without a marker or board: two captures posed by their own matches, the scale "
+      "from the baseline");
+  CLI::Option* baseline =
+      sub->add_option("--baseline", o.mapBaseline,
+                      "With --unprepared: how far the camera moved between the first two "
+                      "captures (metres; the Map panel's Baseline field)")
+          ->check(CLI::Validator(
+              [](std::string& v) -> std::string {
+                double x = 0.0;
+                if (!CLI::detail::lexical_cast(v, x) || !std::isfinite(x) || !(x > 0.0))
+                  return "must be a finite length in metres greater than 0, got '" + v + "'";
+                return "";
+              },
+              "METRES"));
+  unprepared->excludes(marker)->excludes(board);
+  baseline->needs(unprepared);
   sub->add_option("--capture-at", o.captureAt,
-                  "Headless, with --marker/--board: capture these frames as references, build "
-                  "the map and track the input on it")
+                  "Headless, with --marker/--board/--unprepared: capture these frames as "
+                  "references, build the map and track the input on it")
       ->delimiter(',')
       ->check(CLI::NonNegativeNumber);
   sub->add_option("--map-out", o.mapOut, "Headless --capture-at: write the map folder here");

@@ -9,6 +9,7 @@
 
 #include "app/viewer/BackgroundWork.hpp"
 #include "engine/core/Error.hpp"
+#include "engine/mapping/MetricScale.hpp"
 #include "engine/reference/MultiReferencePreparer.hpp"
 
 namespace reftrack::app {
@@ -41,12 +42,29 @@ LiveMapping::LiveMapping(WorldFrameFiducial fiducial, PinholeCamera camera,
   params_.tracker.mode = TrackingMode::SixDof;
   params_.check();
   camera_.check();
-  state.fiducial = fiducial_.description();
+  state.fiducial = fiducial_->description();
+  state.unprepared = false;
+  report(state);
+}
+
+LiveMapping::LiveMapping(PinholeCamera camera, MapExtenderParams params,
+                         UnpreparedMapParams unprepared, bool background, MapState& state)
+    : camera_(std::move(camera)),
+      params_(std::move(params)),
+      unprepared_(std::move(unprepared)),
+      background_(background) {
+  params_.tracker.mode = TrackingMode::SixDof;
+  params_.check();
+  camera_.check();
+  motion_.emplace(camera_, unprepared_);  // checks unprepared_
+  state.fiducial = "none (unprepared: own matches)";
+  state.unprepared = true;
   report(state);
 }
 
 LiveMapping::~LiveMapping() {
   if (working_.valid()) working_.wait();
+  if (motionWork_.valid()) motionWork_.wait();
 }
 
 void LiveMapping::fail(MapState& state, const std::string& message) const {
@@ -60,19 +78,27 @@ bool LiveMapping::capture(const Frame& frame, const std::optional<RigidPose>& tr
     fail(state, "no frame to capture yet");
     return false;
   }
+  if (!fiducial_ && !map_) return captureUnposed(frame, state);
   const std::string name = "frame " + std::to_string(frame.index);
   std::string why;
   Captured c;
   c.image = frame.image.clone();
   c.frameIndex = frame.index;
-  if (std::optional<MeasuredPose> pose = fiducial_.estimate(frame.image, name, why)) {
+  std::optional<MeasuredPose> pose;
+  if (fiducial_) pose = fiducial_->estimate(frame.image, name, why);
+  if (pose) {
     c.pose = *pose;
   } else if (tracked && map_) {
     c.pose = {*tracked, -1.0};
     c.measured = false;
-  } else {
-    fail(state, std::string("cannot capture ") + name + ": no " + fiducial_.kind() +
+  } else if (fiducial_) {
+    fail(state, std::string("cannot capture ") + name + ": no " + fiducial_->kind() +
                     " in view and not tracking (" + why + ")");
+    return false;
+  } else {
+    fail(state, "cannot capture " + name +
+                    ": not tracking (once the map is built, further captures are posed by "
+                    "tracking it: start near a captured view)");
     return false;
   }
   // Two captures from (almost) the same place cannot triangulate anything.
@@ -94,7 +120,7 @@ bool LiveMapping::capture(const Frame& frame, const std::optional<RigidPose>& tr
   MapCapture shown;
   shown.frameIndex = frame.index;
   shown.timestamp = frame.timestamp;
-  shown.poseFrom = c.measured ? (fiducial_.kind()) : "tracking";
+  shown.poseFrom = !c.measured ? "tracking" : fiducial_ ? fiducial_->kind() : "matches";
   shown.fiducialRmsPx = c.measured ? c.pose.reprojectionRmsPx : -1.0;
   captures_.push_back(std::move(c));
   shown_.push_back(shown);
@@ -104,6 +130,113 @@ bool LiveMapping::capture(const Frame& frame, const std::optional<RigidPose>& tr
   state.messageIsError = false;
   report(state);
   return true;
+}
+
+bool LiveMapping::captureUnposed(const Frame& frame, MapState& state) {
+  const std::string name = "frame " + std::to_string(frame.index);
+  if (captures_.size() >= 2) {
+    fail(state, "cannot capture " + name +
+                    ": the first two captures start the map; Build map first (captures after "
+                    "it are posed by tracking and added with Add to map)");
+    return false;
+  }
+  Captured c;
+  c.image = frame.image.clone();
+  c.frameIndex = frame.index;
+  c.posed = false;
+  std::shared_ptr<const TwoViewKeyframe> keyframe;
+  std::optional<TwoViewMotion> motion;
+  try {
+    keyframe = std::make_shared<const TwoViewKeyframe>(motion_->describe(frame.image));
+    if (!captures_.empty()) motion = motion_->estimate(*firstKeyframe_, *keyframe);
+  } catch (const std::exception& e) {
+    fail(state, "cannot capture " + name + ": " + e.what());
+    return false;
+  }
+  if (const std::string why = motion_->texturelessRefusal(*keyframe, "captured");
+      captures_.empty() && !why.empty()) {
+    fail(state, "cannot capture " + name + ": " + why);
+    return false;
+  }
+  if (motion && !motion->usable()) {
+    showMotion(*motion, frame.index, state);
+    fail(state, "cannot capture " + name + ": " + motion->refusal);
+    return false;
+  }
+  MapCapture shown;
+  shown.frameIndex = frame.index;
+  shown.timestamp = frame.timestamp;
+  shown.poseFrom = "matches";
+  captures_.push_back(std::move(c));
+  shown_.push_back(shown);
+  thumbnailsStale_ = true;
+  if (captures_.size() == 1) {
+    firstKeyframe_ = keyframe;
+    state.motion.clear();
+    state.motionFrame = -1;
+    state.message = "captured reference 0 (" + name +
+                    "): now move the camera sideways, about a tenth of its distance to the scene, "
+                    "and capture again";
+  } else {
+    showMotion(*motion, frame.index, state);
+    state.message = "captured reference 1 (" + name + ": " + motion->summary() +
+                    "); type the distance the camera moved between the two captures into "
+                    "Baseline and Build map";
+  }
+  state.messageIsError = false;
+  report(state);
+  return true;
+}
+
+void LiveMapping::showMotion(const TwoViewMotion& motion, int frameIndex, MapState& state) const {
+  state.motion = motion.usable() ? motion.summary() : motion.summary() + ": " + motion.refusal;
+  state.motionUsable = motion.usable();
+  state.motionFrame = frameIndex;
+}
+
+void LiveMapping::measureMotion(const Frame& frame, MapState& state) {
+  if (motionWork_.valid() && ready(motionWork_)) {
+    const int measured = motionWorkFrame_;
+    try {
+      showMotion(motionWork_.get(), measured, state);
+    } catch (const std::exception& e) {
+      state.motion = std::string("motion not measured: ") + e.what();
+      state.motionUsable = false;
+    }
+  }
+  const bool waiting = fiducial_ || map_ || captures_.size() != 1 || !firstKeyframe_;
+  if (waiting || !background_ || motionWork_.valid() || frame.image.empty() ||
+      frame.index == state.motionFrame)
+    return;
+  // One measurement at a time on a worker thread; the next starts on the frame in hand when it
+  // is done (a few per second), so the video never waits for it.
+  motionWorkFrame_ = frame.index;
+  motionWork_ = std::async(std::launch::async, [estimator = *motion_, first = firstKeyframe_,
+                                                image = frame.image.clone()] {
+    return estimator.estimate(*first, estimator.describe(image));
+  });
+}
+
+LiveMapping::Work LiveMapping::buildUnprepared(std::vector<Captured> captures,
+                                               double baselineMetres) const {
+  std::vector<reftrack::ReferenceImage> images;
+  for (const Captured& c : captures)
+    images.push_back({c.image, "frame " + std::to_string(c.frameIndex)});
+  const UnpreparedInitializer initializer(camera_, params_, unprepared_);
+  const std::shared_ptr<std::atomic<int>> done = done_;
+  UnpreparedMap built = initializer.build(images, MetricScale::baseline(baselineMetres),
+                                          [done](const std::string&) { ++*done; });
+  Work w;
+  const UnpreparedMapReport& r = built.report;
+  w.message = "map built from the captures' own matches (baseline " + fixed(baselineMetres, 3) +
+              " m): " + std::to_string(built.prepared.map.size()) + " references, " +
+              std::to_string(built.prepared.map.points.size()) + " points, " +
+              (r.onPlane ? "the world on the scene's dominant plane"
+                         : "the world at the first capture's camera (no dominant plane)");
+  w.map = std::move(built.prepared.map);
+  w.posesFromMap = true;
+  for (std::size_t i = 0; i < captures.size(); ++i) w.added.push_back(static_cast<int>(i));
+  return w;
 }
 
 LiveMapping::Work LiveMapping::build(std::vector<Captured> captures) const {
@@ -118,9 +251,9 @@ LiveMapping::Work LiveMapping::build(std::vector<Captured> captures) const {
   const auto progress = [done](const ReferencePairReport&) { ++*done; };
   std::vector<RigidPose> given;
   for (const MeasuredPose& m : poses) given.push_back(m.worldToCamera);
-  MultiPreparation p = fiducial_.refinedLikeAMarker()
-                           ? preparer.prepare(images, poses, fiducial_.description(), progress)
-                           : preparer.prepare(images, given, fiducial_.description(), progress);
+  MultiPreparation p = fiducial_->refinedLikeAMarker()
+                           ? preparer.prepare(images, poses, fiducial_->description(), progress)
+                           : preparer.prepare(images, given, fiducial_->description(), progress);
   Work w;
   w.message = "map built: " + std::to_string(p.map.size()) + " references, " +
               std::to_string(p.map.points.size()) + " points";
@@ -175,6 +308,12 @@ void LiveMapping::collect(MapState& state) {
       shown_[static_cast<std::size_t>(i)].note.clear();
     }
     for (const auto& [i, why] : w.notes) shown_[static_cast<std::size_t>(i)].note = why;
+    if (w.posesFromMap)  // unprepared: the captures are now posed, as the map's references
+      for (std::size_t k = 0; k < w.added.size() && k < w.map.views.size(); ++k) {
+        Captured& c = captures_[static_cast<std::size_t>(w.added[k])];
+        c.pose = {w.map.views[k].T, -1.0};
+        c.posed = true;
+      }
     map_ = std::move(w.map);
     if (!w.added.empty()) forTracking_ = map_;
     state.message = w.message + (w.added.empty() ? "" : "; tracking on it");
@@ -209,12 +348,16 @@ void LiveMapping::update(const Frame& frame, const std::optional<RigidPose>& tra
     } else {
       captures_.clear();
       shown_.clear();
+      firstKeyframe_.reset();
+      state.motion.clear();
+      state.motionFrame = -1;
       thumbnailsStale_ = true;
       state.message = map_ ? "captures cleared (the map is kept)" : "captures cleared";
       state.messageIsError = false;
     }
   }
   if (std::exchange(state.captureRequested, false)) capture(frame, tracked, state);
+  if (!fiducial_) measureMotion(frame, state);
   const bool build = std::exchange(state.buildRequested, false);
   const bool add = std::exchange(state.addRequested, false);
   if ((build || add) && working_.valid()) {
@@ -228,9 +371,23 @@ void LiveMapping::update(const Frame& frame, const std::optional<RigidPose>& tra
       else
         ++left;
     }
-    if (measured.size() < 2) {
+    std::string baselineError;
+    if (!fiducial_) {
+      try {
+        MetricScale::baseline(state.baselineMetres).check(camera_.imageSize());
+      } catch (const Error& e) {
+        baselineError = e.what();
+      }
+    }
+    if (!fiducial_ && measured.size() < 2) {
+      fail(state, "Build map needs two captures from two places (have " +
+                      std::to_string(measured.size()) + ")");
+    } else if (!fiducial_ && !baselineError.empty()) {
+      fail(state, "Build map needs the distance the camera moved between the two captures: " +
+                      baselineError + " (type it into Baseline, in metres)");
+    } else if (measured.size() < 2) {
       fail(state, "Build map needs at least two references captured with the " +
-                      std::string(fiducial_.kind()) + " in view (have " +
+                      std::string(fiducial_->kind()) + " in view (have " +
                       std::to_string(measured.size()) + ")");
     } else {
       // Captures from tracking can only be added to the map they were tracked on.
@@ -248,9 +405,19 @@ void LiveMapping::update(const Frame& frame, const std::optional<RigidPose>& tra
       }
       for (MapCapture& s : shown_) s.inMap = false;
       done_->store(0);
-      total_ = static_cast<int>(measured.size() * (measured.size() - 1) / 2);
-      unit_ = "pairs matched";
-      start([this, measured] { return this->build(measured); }, "building the map", state);
+      if (fiducial_) {
+        total_ = static_cast<int>(measured.size() * (measured.size() - 1) / 2);
+        unit_ = "pairs matched";
+        start([this, measured] { return this->build(measured); }, "building the map", state);
+      } else {
+        total_ = UnpreparedInitializer(camera_, params_, unprepared_).steps(2);
+        unit_ = "steps";
+        start(
+            [this, measured, baseline = state.baselineMetres] {
+              return this->buildUnprepared(measured, baseline);
+            },
+            "building the map from the captures' own matches", state);
+      }
       if (left > 0 && !state.messageIsError)
         state.message += (state.message.empty() ? "" : "; ") + std::to_string(left) +
                          " capture(s) posed by tracking left out";
@@ -336,6 +503,7 @@ void LiveMapping::report(MapState& state) {
   const ReferencePreparerParams& p = params_.preparation;
   for (std::size_t a = 0; a < captures_.size(); ++a)
     for (std::size_t b = a + 1; b < captures_.size(); ++b) {
+      if (!captures_[a].posed || !captures_[b].posed) continue;  // unprepared, not built yet
       MapCapturePair pair;
       pair.a = static_cast<int>(a);
       pair.b = static_cast<int>(b);

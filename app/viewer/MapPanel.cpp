@@ -25,6 +25,10 @@ void drawMapPanel(MapState& state, const cv::Rect2f& placement) {
   ImGui::SetNextWindowSize({placement.width, placement.height}, ImGuiCond_FirstUseEver);
   ImGui::Begin("Map");
   ImGui::TextDisabled("world frame: %s", state.fiducial.empty() ? "-" : state.fiducial.c_str());
+  if (state.unprepared && state.mapReferences == 0)
+    ImGui::TextWrapped(
+        "No marker: capture the scene from two places a hand's width apart (move the camera "
+        "sideways, do not only turn it), type how far it moved, Build map.");
   if (button("Capture reference", true)) state.captureRequested = true;
   ImGui::SameLine();
   if (button("Clear", !state.working && !state.captures.empty())) state.clearRequested = true;
@@ -77,6 +81,23 @@ void drawMapPanel(MapState& state, const cv::Rect2f& placement) {
   }
   for (const MapCapture& c : state.captures)
     if (!c.note.empty()) ImGui::TextWrapped("frame %d not added: %s", c.frameIndex, c.note.c_str());
+  // Unprepared: the motion since the first capture, green when the two views can start a map.
+  if (state.unprepared && state.mapReferences == 0 && !state.captures.empty() &&
+      !state.motion.empty()) {
+    const ImVec4 colour =
+        state.motionUsable ? ImVec4(0.45f, 0.9f, 0.45f, 1.0f) : ImVec4(1.0f, 0.75f, 0.2f, 1.0f);
+    ImGui::PushStyleColor(ImGuiCol_Text, colour);
+    ImGui::TextWrapped("%s since capture 0 (frame %d): %s",
+                       state.motionUsable ? "ready" : "not yet", state.motionFrame,
+                       state.motion.c_str());
+    ImGui::PopStyleColor();
+  }
+  if (state.unprepared && state.mapReferences == 0) {
+    ImGui::SetNextItemWidth(120.0f);
+    ImGui::InputDouble("baseline (m)", &state.baselineMetres, 0.01, 0.05, "%.3f");
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("how far the camera moved between the two captures (metres)");
+  }
 
   ImGui::Separator();
   if (state.working) {

@@ -83,9 +83,19 @@ void ViewerOptions::check() const {
     throw Error("--marker and --board both fix the world frame: give one");
   if (!mapMarker.empty()) MarkerSpec::parse(mapMarker);  // throws on a bad marker
   if (!mapBoard.empty()) CalibrationBoard::parse(mapBoard);
-  const bool mapping = !mapMarker.empty() || !mapBoard.empty();
-  if (!captureAt.empty() && !mapping) throw Error("--capture-at needs --marker or --board");
-  if (!mapOut.empty() && !mapping) throw Error("--map-out needs --marker or --board");
+  if (mapUnprepared && (!mapMarker.empty() || !mapBoard.empty()))
+    throw Error("--unprepared builds a map without a marker or board: give no --marker / --board");
+  if (mapBaseline != 0.0 && !mapUnprepared) throw Error("--baseline needs --unprepared");
+  if (mapUnprepared && mapBaseline != 0.0 && !(std::isfinite(mapBaseline) && mapBaseline > 0.0))
+    throw Error("--baseline must be a finite length in metres greater than 0");
+  if (mapUnprepared && headless && !captureAt.empty() && mapBaseline == 0.0)
+    throw Error(
+        "--unprepared --capture-at needs --baseline M: how far the camera moved between "
+        "the two captured frames (metres)");
+  const bool mapping = this->mapping();
+  if (!captureAt.empty() && !mapping)
+    throw Error("--capture-at needs --marker, --board or --unprepared");
+  if (!mapOut.empty() && !mapping) throw Error("--map-out needs --marker, --board or --unprepared");
   if ((!captureAt.empty() || !mapOut.empty()) && !headless)
     throw Error(
         "--capture-at and --map-out apply to --headless runs (the window has the Map panel)");
@@ -94,7 +104,9 @@ void ViewerOptions::check() const {
   for (int i : captureAt)
     if (i < 0) throw Error("--capture-at: frame indices must not be negative");
   if (mapping && !poses.empty())
-    throw Error("--poses replays a trajectory: it cannot be combined with --marker / --board");
+    throw Error(
+        "--poses replays a trajectory: it cannot be combined with --marker / --board / "
+        "--unprepared");
   if (!trajectory.empty() && !headless)
     throw Error("--trajectory applies to --headless runs (the window records with Record)");
 }
@@ -177,7 +189,7 @@ Session openSession(const ViewerOptions& options, ViewerState& state) {
   // live tracker is built until the calibrated camera is put to use.
   const bool guessCamera = options.camera.empty() && !sim && !options.calibrateBoard.empty();
   s.makeTracker = options.makeTracker;
-  const bool mapping = !options.mapMarker.empty() || !options.mapBoard.empty();
+  const bool mapping = options.mapping();
   if (guessCamera) {
     cameraName = "the guessed camera";
   } else if (!options.camera.empty()) {
@@ -244,8 +256,10 @@ struct FrameLoop {
   OverlayCompositor compositor;
   std::unique_ptr<VideoRecorder> recorder;
   std::unique_ptr<LiveCalibration> calibration;  // with --calibrate
-  std::unique_ptr<LiveMapping> mapping;          // with --marker / --board
-  std::optional<TumTrajectory> trajectory;       // the tracked poses (--trajectory)
+  std::unique_ptr<LiveMapping> mapping;          // with --marker / --board / --unprepared
+  // A map built unprepared: its world -> the truth's (session.truth), by its reference 0.
+  std::optional<RigidPose> truthAnchor;
+  std::optional<TumTrajectory> trajectory;  // the tracked poses (--trajectory)
   Frame current;
   TrackingResult result;
   Clock::time_point lastProcessed{};
@@ -334,10 +348,13 @@ struct FrameLoop {
     if (session.truth && result.worldToCamera) {
       const TrackingResult truth =
           session.truth->process(current.image, current.index, current.timestamp);
+      // A map of an unprepared scene has a world of its own: the truth is carried into it by
+      // the first capture's view (truthAnchor), as `eval --anchor-map` does.
       if (truth.worldToCamera)
         stats.trueErrorPx =
-            overlayErrorPx(session.camera, *truth.worldToCamera, *result.worldToCamera,
-                           state.settings.overlay.cubeWorldVertices());
+            overlayErrorPx(session.camera,
+                           truthAnchor ? *truth.worldToCamera * *truthAnchor : *truth.worldToCamera,
+                           *result.worldToCamera, state.settings.overlay.cubeWorldVertices());
     }
     if (stats.predictedErrorPx) {
       predictedSumPx += *stats.predictedErrorPx;
@@ -379,6 +396,15 @@ struct FrameLoop {
   void useMap(MultiReferenceMap map) {
     TrackerParams params = state.settings.tracker;
     params.mode = TrackingMode::SixDof;
+    // Unprepared: the map's world -> the truth's, by the first capture (its reference 0):
+    // X_truth = T0_truth^-1 T0_map X_map.
+    truthAnchor.reset();
+    if (state.map.unprepared && session.truth && !state.map.captures.empty()) {
+      const MapCapture& first = state.map.captures.front();
+      const TrackingResult at =
+          session.truth->process(cv::Mat(), first.frameIndex, first.timestamp);
+      if (at.worldToCamera) truthAnchor = at.worldToCamera->inverse() * map.views.front().T;
+    }
     try {
       auto tracker = std::make_unique<PoseFrameTracker>(std::move(map), params);
       tracker->applyParams(params);
@@ -544,18 +570,24 @@ void startCalibration(const ViewerOptions& options, FrameLoop& loop, cv::Size fr
   loop.calibration = std::make_unique<LiveCalibration>(frameSize, !options.headless, c);
 }
 
-// Opens the Map panel with `--marker SPEC` or `--board SPEC`.
+// Opens the Map panel with `--marker SPEC`, `--board SPEC` or `--unprepared`.
 void startMapping(const ViewerOptions& options, FrameLoop& loop) {
-  if (options.mapMarker.empty() && options.mapBoard.empty()) return;
+  if (!options.mapping()) return;
   const PinholeCamera& camera = loop.session.camera;
   MapExtenderParams params;
   params.tracker = loop.state.settings.tracker;
+  loop.state.map.active = true;
+  if (!options.mapOut.empty()) loop.state.map.savePath = options.mapOut.string();
+  if (options.mapUnprepared) {
+    loop.state.map.baselineMetres = options.mapBaseline;
+    loop.mapping = std::make_unique<LiveMapping>(camera, std::move(params), UnpreparedMapParams{},
+                                                 !options.headless, loop.state.map);
+    return;
+  }
   WorldFrameFiducial fiducial =
       options.mapMarker.empty()
           ? WorldFrameFiducial::board(CalibrationBoard::parse(options.mapBoard), camera)
           : WorldFrameFiducial::marker(MarkerSpec::parse(options.mapMarker), camera);
-  loop.state.map.active = true;
-  if (!options.mapOut.empty()) loop.state.map.savePath = options.mapOut.string();
   loop.mapping = std::make_unique<LiveMapping>(std::move(fiducial), camera, std::move(params),
                                                !options.headless, loop.state.map);
 }

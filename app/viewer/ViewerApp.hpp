@@ -48,8 +48,14 @@ struct ViewerOptions {
   // built from them before the input is tracked from its first frame on the new map, and written
   // to mapOut (an error when any step fails).
   std::string mapMarker, mapBoard;
+  // ... or no fiducial (`--unprepared`): the first two captures posed by their own matches, the
+  // scale from mapBaseline (metres the camera moved between them; headless --capture-at needs
+  // it, the window's Map panel has a field for it).
+  bool mapUnprepared = false;
+  double mapBaseline = 0.0;
   std::vector<int> captureAt;
   std::filesystem::path mapOut;
+  bool mapping() const { return !mapMarker.empty() || !mapBoard.empty() || mapUnprepared; }
   // Headless: the tracked poses as a TUM trajectory (camera in world), written atomically.
   std::filesystem::path trajectory;
   FrameSourceOptions source;

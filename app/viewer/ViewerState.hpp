@@ -81,12 +81,16 @@ struct MapCapturePair {
   std::string warning;  // empty: fine
 };
 
-// The Map panel (`view --marker SPEC` or `--board SPEC`: build a reference map live).
+// The Map panel (`view --marker SPEC` or `--board SPEC`: build a reference map live; `view
+// --unprepared`: from two captures of an unprepared scene and the distance between them).
 struct MapState {
   bool active = false;
-  std::string fiducial;  // what fixes the world frame ("marker DICT_6X6_250:23:0.2")
+  std::string fiducial;     // what fixes the world frame ("marker DICT_6X6_250:23:0.2")
+  bool unprepared = false;  // no fiducial: the first two captures are posed by their own matches
   // Edited.
   std::string savePath = "map";
+  // Unprepared: how far the camera moved between the first two captures (metres; 0: not given).
+  double baselineMetres = 0.0;
   bool captureRequested = false, buildRequested = false, addRequested = false;
   bool saveRequested = false, clearRequested = false;
   // Shown.
@@ -100,7 +104,12 @@ struct MapState {
   int mapReferences = 0;     // 0: no map yet
   std::size_t mapPoints = 0;
   bool tracking = false;  // the live tracker runs on this map
-  std::string message;    // last action's result or error
+  // Unprepared, one capture and no map yet: how the camera moved since it (TwoViewMotion of the
+  // capture and a recent frame), whether those two views could start a map, and the frame.
+  std::string motion;  // empty: not measured yet
+  bool motionUsable = false;
+  int motionFrame = -1;
+  std::string message;  // last action's result or error
   bool messageIsError = false;
 };
 

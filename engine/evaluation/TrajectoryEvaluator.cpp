@@ -39,6 +39,7 @@ TrajectoryAlignment parseTrajectoryAlignment(const std::string& text) {
 void EvaluationParams::check() const {
   requireFiniteInRange("evaluation.max_time_difference", maxTimeDifference, 0.0, 1e6);
   requireFiniteInRange("evaluation.cube_side", cubeSide, 1e-6, 1e3);
+  for (int a = 0; a < 3; ++a) requireFiniteInRange("evaluation.cube_base", cubeBase[a], -1e6, 1e6);
 }
 
 ErrorStats ErrorStats::of(std::vector<double> values) {
@@ -141,7 +142,8 @@ TrajectoryEvaluation evaluateTrajectory(const TumTrajectory& groundTruth,
     est[i] = RigidPose(R, -R * c);
   }
 
-  const std::vector<Eigen::Vector3d> cube = cubeVertices(params.cubeSide);
+  std::vector<Eigen::Vector3d> cube = cubeVertices(params.cubeSide);
+  for (Eigen::Vector3d& X : cube) X += params.cubeBase;
   std::vector<double> ateT, ateR, cubePx;
   for (std::size_t i = 0; i < pairs.size(); ++i) {
     FrameEvaluation f;

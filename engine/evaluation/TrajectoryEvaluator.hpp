@@ -7,8 +7,9 @@
 //  - ATE: per associated frame, the camera-centre distance (mm) and the rotation angle (deg);
 //  - RPE: per consecutive pair of associated frames, the error of the relative motion
 //    E = D_gt^-1 D_est with D = T_k T_{k-1}^-1 (translation mm, rotation deg);
-//  - cube reprojection error (needs the camera): a virtual cube of side cubeSide at the world
-//    origin standing on z = 0 (z up out of the marker), vertices projected ideally (K, no lens
+//  - cube reprojection error (needs the camera): a virtual cube of side cubeSide standing at
+//    cubeBase (default the world origin) along world +z (up out of the marker), vertices projected
+//    ideally (K, no lens
 //    distortion) through both poses; statistics over all vertices of all frames (pixels);
 //  - jitter: for runs of three consecutive ground-truth frames that all have an estimate, the
 //    second difference a_k = e_{k+1} - 2 e_k + e_{k-1} of the cube-vertex error e_k (estimate minus
@@ -40,6 +41,8 @@ struct EvaluationParams {
   double maxTimeDifference = 0.005;  // s; association tolerance (half a frame at 100 Hz)
   TrajectoryAlignment alignment = TrajectoryAlignment::None;  // of the estimate to the truth
   double cubeSide = 0.1;  // m; the virtual cube for reprojection error and jitter
+  // The centre of the cube's base (ground-truth world, m); it stands on it along world +z.
+  Eigen::Vector3d cubeBase = Eigen::Vector3d::Zero();
 
   void check() const;  // throws reftrack::Error naming the bad field
 };

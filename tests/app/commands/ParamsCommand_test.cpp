@@ -126,6 +126,32 @@ TEST(ParamsCommand, WritesTheDefaultsAsACommentedFileParamsAccepts) {
   EXPECT_EQ(savedYaml(TrackerParams::load(dir / "pose.yml")), savedYaml(TrackerParams{}));
 }
 
+// The section `prepare --unprepared --params` reads is listed (and written) when asked for, never
+// with the tracking parameters, and not mixed with them in one file.
+TEST(ParamsCommand, TheUnpreparedSectionIsListedAndWrittenOnItsOwn) {
+  const auto dir = test::freshTempDir("ParamsCommand_unprepared");
+  const auto all = test::runReftrack("params", dir);
+  ASSERT_EQ(all.exitCode, 0) << all.err;
+  EXPECT_TRUE(rowOf(all.out, "unprepared.min_parallax_deg").empty());
+  EXPECT_NE(all.out.find("`reftrack params unprepared`"), std::string::npos);
+  const auto listed = test::runReftrack("params unprepared", dir);
+  ASSERT_EQ(listed.exitCode, 0) << listed.err;
+  EXPECT_FALSE(rowOf(listed.out, "unprepared.min_parallax_deg").empty());
+  EXPECT_FALSE(rowOf(listed.out, "unprepared.max_rotation_share").empty());
+  EXPECT_NE(listed.out.find("`prepare --unprepared --params`"), std::string::npos) << listed.out;
+  const auto file = dir / "unprepared.yml";
+  const auto written = test::runReftrack("params unprepared --write " + file.string(), dir);
+  ASSERT_EQ(written.exitCode, 0) << written.err;
+  const std::string text = test::readTextFile(file);
+  EXPECT_NE(text.find("unprepared:\n"), std::string::npos) << text;
+  EXPECT_EQ(text.find("corners:"), std::string::npos);
+  const auto mixed =
+      test::runReftrack("params unprepared ransac --write " + (dir / "mixed.yml").string(), dir);
+  EXPECT_EQ(mixed.exitCode, 2);
+  EXPECT_NE(mixed.err.find("write them to two files"), std::string::npos) << mixed.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "mixed.yml"));
+}
+
 TEST(ParamsCommand, AFileItCannotWriteIsAClearErrorAndLeavesNothing) {
   const auto dir = test::freshTempDir("ParamsCommand_unwritable");
   const auto missing = dir / "no-such-folder" / "params.yml";

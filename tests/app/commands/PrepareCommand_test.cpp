@@ -64,6 +64,19 @@ class PrepareCommandTest : public ::testing::Test {
         0.5 * (truthA_->cameraCentre() + truthB_->cameraCentre()) - 0.1 * R.row(1).transpose();
     truthC_ = new RigidPose(R, -R * centre);
     cv::imwrite((*dir_ / "reference_c.png").string(), sim.renderView(*truthC_, 77, o.noiseSigma));
+    // For the unprepared maps' refusals: A's camera turned 4 degrees on the spot, and a blank
+    // (textureless) view with the sensor's noise.
+    const RigidPose turned =
+        RigidPose(Eigen::AngleAxisd(4.0 * kPi / 180.0, Eigen::Vector3d::UnitY()).toRotationMatrix(),
+                  Eigen::Vector3d::Zero()) *
+        *truthA_;
+    cv::imwrite((*dir_ / "reference_turned.png").string(),
+                sim.renderView(turned, 78, o.noiseSigma));
+    cv::Mat blank(sim.camera().imageSize(), CV_8UC3, cv::Scalar(120, 125, 130));
+    cv::Mat noise(blank.size(), CV_8UC3);
+    cv::randn(noise, cv::Scalar::all(0), cv::Scalar::all(o.noiseSigma));
+    blank += noise;
+    cv::imwrite((*dir_ / "textureless.png").string(), blank);
     marker_ = new MarkerSpec(sim.marker());
   }
   static void TearDownTestSuite() {
@@ -429,4 +442,94 @@ TEST_F(PrepareCommandTest, ReferenceCountAndPoseCountMustAgree) {
                   scratch);
   EXPECT_EQ(mixed.exitCode, 2) << mixed.err;
   EXPECT_FALSE(fs::exists(scratch / "map" / MultiReferenceMap::kFileName));
+}
+
+// `prepare --unprepared`: references A, B and C without their poses, the scale from A-B's true
+// distance: A-B's relative pose from their own matches, the world on the desk's plane (the
+// simulator's z = 0), C added as `extend` adds one.
+TEST_F(PrepareCommandTest, UnpreparedReferencesGetTheirTruePosesOnTheDeskPlane) {
+  const fs::path scratch = test::freshTempDir("PrepareCommand_unprepared");
+  const double baseline = (truthA_->cameraCentre() - truthB_->cameraCentre()).norm();
+  const CommandRun run = runReftrack(
+      "prepare --camera " + (*dir_ / "camera.yml").string() + " --ref " +
+          (*dir_ / "reference_a.png").string() + " --ref " + (*dir_ / "reference_b.png").string() +
+          " --ref " + (*dir_ / "reference_c.png").string() + " --unprepared --baseline " +
+          std::to_string(baseline) + " --out " + (scratch / "map").string(),
+      scratch);
+  ASSERT_EQ(run.exitCode, 0) << run.err << run.out;
+  EXPECT_NE(run.out.find("two-view motion of references 0-1: "), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("world frame: on the dominant plane"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("reference 2 added as `extend` adds one"), std::string::npos) << run.out;
+  const MultiReferenceMap map = MultiReferenceMap::load(scratch / "map");
+  ASSERT_EQ(map.size(), 3);
+  const std::vector<RigidPose> truth = {*truthA_, *truthB_, *truthC_};
+  for (int v = 1; v < 3; ++v) {
+    const RigidPose relative = map.views[static_cast<std::size_t>(v)].T * map.views[0].T.inverse();
+    const RigidPose expected = truth[static_cast<std::size_t>(v)] * truthA_->inverse();
+    const double mm = 1000.0 * (relative.cameraCentre() - expected.cameraCentre()).norm();
+    const double deg = RigidPose::rotationDistance(relative, expected) * 180.0 / kPi;
+    std::printf("reference %d relative to A: %.2f mm, %.4f deg off the truth\n", v, mm, deg);
+    // Measured 0.3-0.5 mm and 0.01-0.02 deg (the 0.25 m baseline is exact by construction).
+    EXPECT_LT(mm, 2.0) << v;
+    EXPECT_LT(deg, 0.05) << v;
+  }
+  // The map's z is the desk's normal (the simulator's world z), seen from reference A.
+  const RigidPose mapToTruth = truthA_->inverse() * map.views[0].T;
+  EXPECT_GT((mapToTruth.rotation() * Eigen::Vector3d::UnitZ()).z(), std::cos(kPi / 180.0));
+  EXPECT_NE(map.poseSource.find("unprepared"), std::string::npos);
+}
+
+// The unprepared path's refusals: bad lengths and a missing or doubled pose source are usage
+// errors (exit 2); a pair turned on the spot and a textureless view are refused (exit 1) with
+// what to do, and no map is written.
+TEST_F(PrepareCommandTest, UnpreparedRefusalsNameWhatToDo) {
+  const fs::path scratch = test::freshTempDir("PrepareCommand_unprepared_bad");
+  const fs::path out = scratch / "map";
+  const std::string refs = "prepare --camera " + (*dir_ / "camera.yml").string() + " --ref " +
+                           (*dir_ / "reference_a.png").string() + " --out " + out.string();
+  const std::string ab = refs + " --ref " + (*dir_ / "reference_b.png").string() + " --unprepared";
+  for (const char* bad : {"-0.1", "0", "nan", "inf", "1e999", "ten"}) {
+    const CommandRun run = runReftrack(ab + " --baseline " + bad, scratch);
+    EXPECT_EQ(run.exitCode, 2) << bad;
+    EXPECT_NE(run.err.find("--baseline: must be a finite length in metres greater than 0"),
+              std::string::npos)
+        << bad << ": " << run.err;
+  }
+  const CommandRun noScale = runReftrack(ab, scratch);
+  EXPECT_EQ(noScale.exitCode, 2);
+  EXPECT_NE(noScale.err.find("--unprepared needs the scale: --baseline M"), std::string::npos)
+      << noScale.err;
+  EXPECT_EQ(runReftrack(ab + " --distance 0.3", scratch).exitCode, 2);  // no points
+  EXPECT_EQ(runReftrack(ab + " --distance 0.3 --distance-points 1,2,3", scratch).exitCode, 2);
+  EXPECT_EQ(runReftrack(ab + " --baseline 0.1 --marker " + marker_->toString(), scratch).exitCode,
+            2);
+  EXPECT_EQ(runReftrack(ab + " --baseline 0.1 --distance 0.3 --distance-points 1,2,300,4", scratch)
+                .exitCode,
+            2);
+  EXPECT_EQ(runReftrack(refs + " --ref " + (*dir_ / "reference_b.png").string() + " --marker " +
+                            marker_->toString() + " --baseline 0.1",
+                        scratch)
+                .exitCode,
+            2);  // --baseline without --unprepared
+
+  const CommandRun turned = runReftrack(
+      refs + " --ref " + (*dir_ / "reference_turned.png").string() + " --unprepared --baseline 0.1",
+      scratch);
+  EXPECT_EQ(turned.exitCode, 1);
+  EXPECT_NE(turned.err.find("cannot start a map: the camera turned but hardly moved"),
+            std::string::npos)
+      << turned.err;
+  EXPECT_NE(turned.err.find("move the camera sideways"), std::string::npos);
+  const CommandRun blank = runReftrack(
+      refs + " --ref " + (*dir_ / "textureless.png").string() + " --unprepared --baseline 0.1",
+      scratch);
+  EXPECT_EQ(blank.exitCode, 1);
+  EXPECT_NE(blank.err.find("the second view is textureless"), std::string::npos) << blank.err;
+  const CommandRun outside =
+      runReftrack(ab + " --distance 0.3 --distance-points 10,20,900,30", scratch);
+  EXPECT_EQ(outside.exitCode, 1);
+  EXPECT_NE(outside.err.find("(900.0, 30.0) lies outside the 640x480 reference image"),
+            std::string::npos)
+      << outside.err;
+  EXPECT_FALSE(fs::exists(out));
 }

@@ -235,6 +235,22 @@ TEST(ViewCommand, UsageErrorsExitWithTwo) {
   EXPECT_EQ(test::runReftrack("view --headless --input sim:static --frames 0", dir).exitCode, 2);
   EXPECT_EQ(test::runReftrack("view --input sim:static --camera /no/such.yml", dir).exitCode, 2);
   EXPECT_EQ(test::runReftrack("view --input sim:static --sim-size big", dir).exitCode, 2);
+  // The unprepared Map panel: a baseline that is not a finite positive length, a baseline
+  // without --unprepared, --unprepared with a marker.
+  for (const char* bad : {"-1", "0", "nan", "inf"}) {
+    const test::CommandRun r = test::runReftrack(
+        std::string("view --headless --input sim:static --unprepared --baseline ") + bad, dir);
+    EXPECT_EQ(r.exitCode, 2) << bad;
+    EXPECT_NE(r.err.find("--baseline: must be a finite length in metres greater than 0"),
+              std::string::npos)
+        << r.err;
+  }
+  EXPECT_EQ(test::runReftrack("view --headless --input sim:static --baseline 0.1", dir).exitCode,
+            2);
+  EXPECT_EQ(test::runReftrack(
+                "view --headless --input sim:static --unprepared --marker DICT_6X6_250:23:0.2", dir)
+                .exitCode,
+            2);
 }
 
 TEST(ViewCommand, HeadlessCalibrationWritesTheCamera) {

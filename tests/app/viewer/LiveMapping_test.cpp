@@ -201,5 +201,94 @@ TEST_F(LiveMappingTest, BuildsOnAWorkerThreadWhileTheLoopGoesOn) {
   EXPECT_LT(requestSeconds, 0.25 * buildSeconds) << requestSeconds << " of " << buildSeconds;
 }
 
+// Unprepared (no marker): the first capture, a view turned on the spot refused with the motion
+// shown, a capture from another place accepted, a third refused until the map is built, Build map
+// refused without the baseline and built with it (the captures then posed by the map), and after
+// it captures posed only by tracking.
+TEST_F(LiveMappingTest, UnpreparedCapturesAreCheckedAndTheMapBuiltWithTheBaseline) {
+  MapState state;
+  LiveMapping m(sim_->camera(), MapExtenderParams{}, UnpreparedMapParams{}, false, state);
+  EXPECT_TRUE(state.unprepared);
+  EXPECT_NE(state.fiducial.find("unprepared"), std::string::npos) << state.fiducial;
+  const Frame blank{cv::Mat(sim_->camera().imageSize(), CV_8UC3, cv::Scalar(90, 90, 90)), 5, 0.0};
+  EXPECT_FALSE(m.capture(blank, std::nullopt, state));
+  EXPECT_NE(state.message.find("cannot capture frame 5: the captured view is textureless"),
+            std::string::npos)
+      << state.message;
+  ASSERT_TRUE(m.capture(frame(0), std::nullopt, state)) << state.message;
+  EXPECT_NE(state.message.find("now move the camera sideways"), std::string::npos);
+  EXPECT_EQ(state.captures[0].poseFrom, "matches");
+  EXPECT_TRUE(state.pairs.empty());
+
+  // Frame 0's camera turned 4 degrees on the spot.
+  const RigidPose turned =
+      RigidPose(Eigen::AngleAxisd(4.0 / kRadToDeg, Eigen::Vector3d::UnitY()).toRotationMatrix(),
+                Eigen::Vector3d::Zero()) *
+      sim_->framePose(0);
+  const Frame turnedFrame{sim_->renderView(turned, 7, 2.0), 6, 0.2};
+  EXPECT_FALSE(m.capture(turnedFrame, std::nullopt, state));
+  EXPECT_NE(state.message.find("cannot capture frame 6: the camera turned but hardly moved"),
+            std::string::npos)
+      << state.message;
+  EXPECT_FALSE(state.motionUsable);
+  EXPECT_EQ(state.motionFrame, 6);
+  EXPECT_NE(state.motion.find("a rotation alone explains"), std::string::npos) << state.motion;
+  EXPECT_EQ(state.captures.size(), 1u);
+
+  ASSERT_TRUE(m.capture(frame(30), std::nullopt, state)) << state.message;
+  EXPECT_TRUE(state.motionUsable);
+  EXPECT_NE(state.message.find("type the distance the camera moved"), std::string::npos);
+  EXPECT_FALSE(m.capture(frame(60), std::nullopt, state));
+  EXPECT_NE(state.message.find("Build map first"), std::string::npos) << state.message;
+
+  state.buildRequested = true;
+  m.update(frame(31), std::nullopt, state);
+  EXPECT_TRUE(state.messageIsError);
+  EXPECT_NE(state.message.find("Build map needs the distance the camera moved"), std::string::npos)
+      << state.message;
+  EXPECT_FALSE(m.map().has_value());
+
+  const RigidPose A = sim_->framePose(0), B = sim_->framePose(30);
+  state.baselineMetres = (A.cameraCentre() - B.cameraCentre()).norm();
+  ASSERT_TRUE(m.buildNow(state)) << state.message;
+  std::optional<MultiReferenceMap> map = m.takeMapForTracking();
+  ASSERT_TRUE(map.has_value());
+  EXPECT_NE(state.message.find("map built from the captures' own matches"), std::string::npos)
+      << state.message;
+  // The captures are posed now: their pair's distance is the baseline typed in.
+  ASSERT_EQ(state.pairs.size(), 1u);
+  EXPECT_NEAR(state.pairs[0].distanceMetres, state.baselineMetres, 1e-9);
+  const RigidPose relative = map->views[1].T * map->views[0].T.inverse(), truth = B * A.inverse();
+  const double turn = RigidPose::rotationDistance(relative, truth) * kRadToDeg;
+  RecordProperty("relative_rotation_error_udeg", static_cast<int>(turn * 1e6));
+  EXPECT_LT(turn, 0.1);
+  EXPECT_LT(RigidPose::translationDistance(relative, truth), 0.002);
+
+  // With the map built, a capture needs the tracker's pose.
+  EXPECT_FALSE(m.capture(frame(60), std::nullopt, state));
+  EXPECT_NE(state.message.find("not tracking"), std::string::npos) << state.message;
+  state.clearRequested = true;
+  m.update(frame(61), std::nullopt, state);
+  EXPECT_TRUE(state.captures.empty());
+  EXPECT_TRUE(state.motion.empty());
+}
+
+// In the window the motion since the first capture is measured on the worker thread while the
+// frames go on, and shown.
+TEST_F(LiveMappingTest, UnpreparedMotionIsMeasuredLiveOnAWorkerThread) {
+  MapState state;
+  LiveMapping m(sim_->camera(), MapExtenderParams{}, UnpreparedMapParams{}, true, state);
+  ASSERT_TRUE(m.capture(frame(0), std::nullopt, state)) << state.message;
+  const Frame later = frame(30);
+  for (int loops = 0; state.motion.empty() && loops < 3000; ++loops) {
+    m.update(later, std::nullopt, state);
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ASSERT_FALSE(state.motion.empty());
+  EXPECT_EQ(state.motionFrame, 30);
+  EXPECT_TRUE(state.motionUsable) << state.motion;
+  EXPECT_NE(state.motion.find("keypoint matches"), std::string::npos) << state.motion;
+}
+
 }  // namespace
 }  // namespace reftrack::app

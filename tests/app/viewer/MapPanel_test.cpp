@@ -97,3 +97,50 @@ TEST(MapPanel, ButtonsSetRequestsOnceTheyApply) {
   EXPECT_FALSE(state.saveRequested);
   EXPECT_TRUE(findButton(ui, draw, "Capture reference"));
 }
+
+// Unprepared (no marker or board): the Baseline field (its + button steps it by 1 cm) and the
+// motion since the first capture; both go once the map is built.
+TEST(MapPanel, UnpreparedOffersTheBaselineField) {
+  test::ImGuiTestContext ui;
+  MapState state;
+  state.active = true;
+  state.unprepared = true;
+  state.fiducial = "none (unprepared: own matches)";
+  state.captures = {MapCapture{0, 0.0, "matches", -1.0, false, "", 0}};
+  state.motion = "420 keypoint matches, 400 fit the essential matrix";
+  state.motionUsable = true;
+  state.motionFrame = 12;
+  auto draw = [&] { drawMapPanel(state, kPlace); };
+  ui.frame(draw);
+  ImGuiWindow* w = test::ImGuiTestContext::window("Map");
+  ASSERT_NE(w, nullptr);
+  // InputDouble's + button: "+" in the ID scope of the field's label.
+  const ImGuiID plus = ImHashStr("+", 0, w->GetID("baseline (m)"));
+  std::optional<ImVec2> at;
+  ImGuiIO& io = ImGui::GetIO();
+  for (float y = w->Pos.y + 20; y < w->Pos.y + w->Size.y && !at; y += 4)
+    for (float x = w->Pos.x + 5; x < w->Pos.x + w->Size.x && !at; x += 6) {
+      io.MousePos = ImVec2(x, y);
+      ui.frame(draw);
+      if (GImGui->HoveredId == plus) at = ImVec2(x, y);
+    }
+  ASSERT_TRUE(at) << "no + button of the baseline field";
+  ui.clickAt(at->x, at->y, draw);
+  ui.clickAt(at->x, at->y, draw);
+  EXPECT_NEAR(state.baselineMetres, 0.02, 1e-12);
+  const auto build = findButton(ui, draw, "Build map");
+  ASSERT_TRUE(build);
+  ui.clickAt(build->x, build->y, draw);
+  EXPECT_TRUE(state.buildRequested);
+  // Built: the field is gone.
+  state.mapReferences = 2;
+  ui.frame(draw);
+  bool fieldShown = false;
+  for (float y = w->Pos.y + 20; y < w->Pos.y + w->Size.y && !fieldShown; y += 4)
+    for (float x = w->Pos.x + 5; x < w->Pos.x + w->Size.x && !fieldShown; x += 6) {
+      io.MousePos = ImVec2(x, y);
+      ui.frame(draw);
+      fieldShown = GImGui->HoveredId == plus;
+    }
+  EXPECT_FALSE(fieldShown);
+}
