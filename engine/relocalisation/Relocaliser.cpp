@@ -134,7 +134,7 @@ struct Relocaliser::Impl {
   void checkFrame(const cv::Mat& frame) const;
   KeypointSupport ratioTestSupport(const cv::Mat& frame, const RigidPose& worldToCamera) const;
   int agreeing(const RigidPose& worldToCamera, const std::vector<cv::Point3f>& points,
-               const std::vector<cv::Point2f>& pixels) const;
+               const std::vector<cv::Point2f>& pixels, double thresholdScale = 1.0) const;
   // Per frame keypoint: its closest ratio-test match over the references `matched` (indices into
   // references), or reference -1. Every call counts what it did into `work` (KeypointWork).
   std::vector<Match> bestMatches(const cv::Mat& descriptors, std::size_t keypoints,
@@ -201,8 +201,8 @@ KeypointSupport Relocaliser::ratioTestSupport(const cv::Mat& frame,
 }
 
 int Relocaliser::agreeing(const RigidPose& worldToCamera, const std::vector<cv::Point3f>& points,
-                          const std::vector<cv::Point2f>& pixels) const {
-  return impl_->agreeing(worldToCamera, points, pixels);
+                          const std::vector<cv::Point2f>& pixels, double thresholdScale) const {
+  return impl_->agreeing(worldToCamera, points, pixels, thresholdScale);
 }
 
 RelocalisationAttempt Relocaliser::locate(const cv::Mat& frame, bool fullResolution) const {
@@ -365,8 +365,10 @@ std::vector<Relocaliser::Impl::Match> Relocaliser::Impl::bestMatches(
 
 int Relocaliser::Impl::agreeing(const RigidPose& worldToCamera,
                                 const std::vector<cv::Point3f>& points,
-                                const std::vector<cv::Point2f>& pixels) const {
-  const double threshold = params.reprojectionPx * resolutionScale(camera.imageSize());
+                                const std::vector<cv::Point2f>& pixels,
+                                double thresholdScale) const {
+  const double threshold =
+      thresholdScale * params.reprojectionPx * resolutionScale(camera.imageSize());
   int n = 0;
   for (std::size_t i = 0; i < points.size(); ++i) {
     const Eigen::Vector3d Xc =

@@ -63,10 +63,10 @@ class Relocaliser {
   // one period off on repeated texture gets few. Same frame contract as locate().
   KeypointSupport ratioTestSupport(const cv::Mat& frame, const RigidPose& worldToCamera) const;
   // How many of the 3D points (world) `worldToCamera` projects (lens distortion included)
-  // within the PnP inlier threshold of their pixels (as detected): e.g. a candidate's
-  // distinctive inliers under a refined pose.
+  // within the PnP inlier threshold (times thresholdScale) of their pixels (as detected): e.g. a
+  // candidate's distinctive inliers under a refined pose.
   int agreeing(const RigidPose& worldToCamera, const std::vector<cv::Point3f>& points,
-               const std::vector<cv::Point2f>& pixels) const;
+               const std::vector<cv::Point2f>& pixels, double thresholdScale = 1.0) const;
   const PinholeCamera& camera() const;
 
  private:

@@ -149,10 +149,12 @@ TEST_F(MultiReferenceTrackerRealFootage, TheFirstFrameGetsAPose) {
   EXPECT_LT(clip_->cubeError(0, *r.tracking.worldToCamera), 0.5);
 }
 
-// The whole clip in order with the default parameters, against issue 24's bounds: >= 99.5% of the
-// frames tracked from frame 0, cube error p95 <= 0.9 px and max below 1.5 px, mean <= 0.35 px.
-// Measured (learned reliability on): mean 0.344, p95 0.769, max 1.20 px (0.367 / 0.807 / 1.33
-// without it). The mean is held to 0.36: 0.01 of room for other CPUs' SIMD float paths.
+// The whole clip in order with the default parameters, against issue 24's bounds: every frame
+// tracked from frame 0 (frames 174 and 389, unsure by the check of every pose and placed a few
+// pixels elsewhere by the relocaliser's second opinion, were lost while that opinion was held to
+// the PnP threshold), cube error p95 <= 0.9 px and max below 1.5 px, mean <= 0.35 px. Measured
+// (learned reliability on): mean 0.344, p95 0.770, max 1.20 px (0.367 / 0.807 / 1.33 without
+// it). The mean is held to 0.36: 0.01 of room for other CPUs' SIMD float paths.
 TEST_F(MultiReferenceTrackerRealFootage, TracksTheWholeClipWithinTheBounds) {
   MultiReferenceTracker tracker(clip_->map, TrackerParams{});
   std::vector<double> errors;
@@ -161,7 +163,7 @@ TEST_F(MultiReferenceTrackerRealFootage, TracksTheWholeClipWithinTheBounds) {
     if (r.tracking.state == TrackingState::Tracking)
       errors.push_back(clip_->cubeError(i, *r.tracking.worldToCamera));
   }
-  EXPECT_GE(static_cast<double>(errors.size()), 0.995 * static_cast<double>(clip_->frames.size()));
+  EXPECT_EQ(errors.size(), clip_->frames.size());
   double mean = 0.0;
   for (double e : errors) mean += e;
   mean /= static_cast<double>(errors.size());
