@@ -386,11 +386,15 @@ RelocalisationAttempt Relocaliser::Impl::locate(const cv::Mat& frame, double sca
   RelocalisationAttempt out;
   std::vector<cv::KeyPoint> keypoints;
   cv::Mat descriptors;
+  const double detectStart = threadCpuMs();
   features.detectAndDescribe(frame, params.featuresPerFrameFor(size), keypoints, descriptors, 0, 0,
                              scale);
+  const double detectCpuMs = threadCpuMs() - detectStart;
   if (static_cast<int>(keypoints.size()) < params.minInliers) {
     out.message = "too few keypoints (" + std::to_string(keypoints.size()) +
                   "): black, textureless or blurred frame";
+    out.stop = RecoveryStage::TooFewKeypoints;
+    out.detectCpuMs = detectCpuMs;
     return out;
   }
 
@@ -398,17 +402,37 @@ RelocalisationAttempt Relocaliser::Impl::locate(const cv::Mat& frame, double sca
   // ones give no pose, all are matched (measured on 40 random views of 8 walkaround
   // references: 3 of the 4 views the top two left without a pose were relocalised by all 8; the
   // fallback costs only on such frames, an attempt's median stays that of matching two).
+  const double retrieveStart = threadCpuMs();
   const std::vector<int> retrieved = retrieve(keypoints, descriptors);
-  RelocalisationAttempt first =
-      locateWith(frame, keypoints, descriptors, retrieved, params.minInlierRatio);
+  const double retrieveCpuMs = threadCpuMs() - retrieveStart;
+  // locateWith, its pose stage timed (all it spent beyond its matching).
+  const auto timed = [&](const std::vector<cv::KeyPoint>& k, const cv::Mat& d,
+                         const std::vector<int>& refs, double minRatio) {
+    const double t0 = threadCpuMs();
+    RelocalisationAttempt a = locateWith(frame, k, d, refs, minRatio);
+    a.poseCpuMs = threadCpuMs() - t0 - a.matchCpuMs;
+    return a;
+  };
+  // Each result carries the stages' CPU times of everything spent so far.
+  const auto spent = [&](RelocalisationAttempt& a, double extraDetectMs) {
+    a.detectCpuMs += detectCpuMs + extraDetectMs;
+    a.matchCpuMs += retrieveCpuMs;
+  };
+  RelocalisationAttempt first = timed(keypoints, descriptors, retrieved, params.minInlierRatio);
+  spent(first, 0.0);
   if (first.candidate) return first;
   std::vector<int> all(references.size());
   std::iota(all.begin(), all.end(), 0);
   if (retrieved.size() != references.size()) {
-    RelocalisationAttempt second =
-        locateWith(frame, keypoints, descriptors, all, params.minInlierRatio);
+    RelocalisationAttempt second = timed(keypoints, descriptors, all, params.minInlierRatio);
+    second.detectCpuMs += first.detectCpuMs;
+    second.matchCpuMs += first.matchCpuMs;
+    second.poseCpuMs += first.poseCpuMs;
     if (second.candidate) return second;
     first.message += "; with all references: " + second.message;
+    first.detectCpuMs = second.detectCpuMs;
+    first.matchCpuMs = second.matchCpuMs;
+    first.poseCpuMs = second.poseCpuMs;
   }
   // A far view sees the references' finest keypoints below its own finest ORB scale: the frame
   // is detected again with finer (upsampled) pyramid levels and matched to every reference.
@@ -416,16 +440,20 @@ RelocalisationAttempt Relocaliser::Impl::locate(const cv::Mat& frame, double sca
   if (params.keypoints != "orb" || params.frameFinerLevels == 0) return first;
   std::vector<cv::KeyPoint> fine;
   cv::Mat fineDescriptors;
+  const double fineStart = threadCpuMs();
   features.detectAndDescribe(frame,
                              params.featuresPerFrameFor(size) * (4 + params.frameFinerLevels) / 4,
                              fine, fineDescriptors, params.frameFinerLevels);
+  const double fineCpuMs = threadCpuMs() - fineStart;
   // Its matches come from 1 + levels/4 times the keypoints against every reference (not the two
   // retrieved): the false ones multiply, the mapped region's true ones hardly. The inlier share
   // bound is halved for it (measured on seeds 1-3 of experiment-relocalisation: the far views it
   // left without a pose had 64-161 inliers at 13-24% of ~500 matches, pose sigma <= 0.23 deg).
-  RelocalisationAttempt finer =
-      locateWith(frame, fine, fineDescriptors, all, 0.5 * params.minInlierRatio);
+  RelocalisationAttempt finer = timed(fine, fineDescriptors, all, 0.5 * params.minInlierRatio);
   finer.message = first.message + "; with finer frame levels: " + finer.message;
+  finer.detectCpuMs += first.detectCpuMs + fineCpuMs;
+  finer.matchCpuMs += first.matchCpuMs;
+  finer.poseCpuMs += first.poseCpuMs;
   return finer;
 }
 
@@ -436,8 +464,10 @@ RelocalisationAttempt Relocaliser::Impl::locateWith(const cv::Mat& frame,
                                                     double minInlierRatio) const {
   const cv::Size size = camera.imageSize();
   RelocalisationAttempt out;
+  const double matchStart = threadCpuMs();
   // 2D-3D matches: each frame keypoint keeps its closest ratio-test match over the references.
   const std::vector<Match> best = bestMatches(descriptors, keypoints.size(), matched);
+  out.matchCpuMs = threadCpuMs() - matchStart;
   std::vector<cv::Point3f> object;
   std::vector<cv::Point2f> image;
   std::vector<int> matchReference;
@@ -456,6 +486,7 @@ RelocalisationAttempt Relocaliser::Impl::locateWith(const cv::Mat& frame,
   if (matches < params.minInliers) {
     out.message = "too few matches with the map (" + std::to_string(matches) + " < " +
                   std::to_string(params.minInliers) + ")";
+    out.stop = RecoveryStage::TooFewMatches;
     return out;
   }
 
@@ -473,6 +504,7 @@ RelocalisationAttempt Relocaliser::Impl::locateWith(const cv::Mat& frame,
     out.message = "PnP-RANSAC found no pose with " + std::to_string(params.minInliers) +
                   " inliers (" + std::to_string(ransacInliers.size()) + " of " +
                   std::to_string(matches) + " matches)";
+    out.stop = RecoveryStage::PnpInliers;
     return out;
   }
   // solvePnPRansac re-estimates the pose from the best sample's inliers with EPnP (after AP3P
@@ -649,6 +681,9 @@ RelocalisationAttempt Relocaliser::Impl::locateWith(const cv::Mat& frame,
       std::to_string(support.covered) + " grid cells" + spreadText + zoomText;
   if (!firstStage || !support.enough) {
     out.message = "not enough support (" + supportText + ")";
+    out.stop = firstInliers < params.minInliers || n < params.minInliers ? RecoveryStage::PnpInliers
+               : !firstStage ? RecoveryStage::InlierShare
+                             : RecoveryStage::InlierSpread;
     return out;
   }
   RelocalisationCandidate c;

@@ -14,6 +14,7 @@
 #include "engine/config/RelocalisationParams.hpp"
 #include "engine/geometry/RigidPose.hpp"
 #include "engine/reference/MultiReferenceMap.hpp"
+#include "engine/relocalisation/RecoveryStage.hpp"
 #include "engine/relocalisation/ReferenceKeypointBuilder.hpp"  // buildReferenceKeypoints
 
 namespace reftrack {
@@ -39,7 +40,13 @@ struct KeypointSupport {
 struct RelocalisationAttempt {
   std::optional<RelocalisationCandidate> candidate;  // nullopt: no pose with enough support
   std::string message;                               // why not, or what was found
-  double ms = 0.0;                                   // wall time of locate()
+  // The search stage that stopped it (TooFewKeypoints .. InlierSpread); None with a candidate.
+  RecoveryStage stop = RecoveryStage::None;
+  // The calling thread's CPU time of the stages: the frame's keypoints (detection and
+  // description), their matching to the map (retrieval included), the pose (PnP-RANSAC,
+  // refinement, guided matching, acceptance).
+  double detectCpuMs = 0.0, matchCpuMs = 0.0, poseCpuMs = 0.0;
+  double ms = 0.0;     // wall time of locate()
   double cpuMs = 0.0;  // the process's CPU time of locate() (OpenCV's worker threads included)
 };
 
