@@ -27,6 +27,7 @@ struct TrackArgs {
   bool coldStarts = false;
   bool debugOverlay = false;
   int threads = -1;  // OpenCV's worker threads; -1: its default
+  bool realtime = false;
 };
 
 // --mode when given; else homography with --reference, 6dof with --map, else the params' mode.
@@ -51,6 +52,7 @@ void checkModeOptions(const TrackArgs& a, TrackingMode mode) {
     forbid(!a.motion.empty(), "--motion", "homography");
     forbid(!a.cubeAt.empty(), "--cube-at", "homography");
     forbid(a.cubeEdge > 0, "--cube-edge", "homography");
+    forbid(a.realtime, "--realtime", "homography (it budgets the 6dof search after a loss)");
   } else {
     if (a.map.empty()) throw CLI::ValidationError("--map", "is required in 6dof mode");
     for (double c : a.cubeAt)
@@ -93,6 +95,10 @@ CommandRegistration registerTrackCommand(CLI::App& parent) {
       ->check(CLI::ExistingFile);
   sub->add_option("--frames", args->frames, "Process at most N frames")
       ->check(CLI::Range(1, 100000000));
+  sub->add_flag("--realtime", args->realtime,
+                "6dof: budget the search after a loss in measured CPU time, as for a live camera "
+                "(a file is otherwise searched the same way on every run, whatever the machine's "
+                "load)");
   sub->add_flag("--cold-starts", args->coldStarts,
                 "6dof: forget the past before every frame, so each frame is a cold start (the "
                 "start near a reference, then relocalisation): measures starts, never needed to "
@@ -142,6 +148,7 @@ CommandRegistration registerTrackCommand(CLI::App& parent) {
               if (args->cubeEdge > 0) o.cubeEdge = args->cubeEdge;
               o.debugOverlay = args->debugOverlay;
               o.coldStarts = args->coldStarts;
+              o.realtime = args->realtime;
               runSixDofTrack(o);
               return;
             }

@@ -169,6 +169,10 @@ CommandRegistration registerViewCommand(CLI::App& parent) {
       ->check(imageSizeValidator())
       ->capture_default_str();
 
+  sub->add_flag("--realtime", o.realtime,
+                "Budget the search after a loss in measured CPU time, as for a live camera (a "
+                "file is otherwise searched the same way on every run, whatever the machine's "
+                "load)");
   sub->add_option("--loop", o.loops, "Play a video file or image folder N times in a row")
       ->check(CLI::Range(1, 1000000));
   sub->add_option("--report-every", o.reportEvery,

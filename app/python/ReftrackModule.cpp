@@ -88,16 +88,21 @@ PYBIND11_MODULE(reftrack, m) {
       .def_static(
           "open_map",
           [](const std::filesystem::path& folder, const py::object& params,
-             const std::optional<std::filesystem::path>& motionModel) {
+             const std::optional<std::filesystem::path>& motionModel, bool realtime) {
             reftrack::TrackerParams p = reftrack::python::trackerParamsFrom(params);
             if (motionModel) p.pose.motionModelFile = motionModel->string();
             py::gil_scoped_release release;
-            return Tracker::openMap(folder, p);
+            Tracker t = Tracker::openMap(folder, p);
+            t.setRealTimeBudget(realtime);
+            return t;
           },
           py::arg("folder"), py::kw_only(), py::arg("params") = py::none(),
-          py::arg("motion_model") = py::none(),
+          py::arg("motion_model") = py::none(), py::arg("realtime") = false,
           "6-DOF tracking against a map folder written by `reftrack prepare`. params: None, a "
-          "YAML file (`--params`) or a dict of its sections; motion_model: a `fit-motion` file.")
+          "YAML file (`--params`) or a dict of its sections; motion_model: a `fit-motion` file; "
+          "realtime: budget the search after a loss in measured CPU time (a live camera) instead "
+          "of its modelled work (the default: the same frames give the same poses on any "
+          "machine).")
       .def_static(
           "open_reference",
           [](const std::filesystem::path& image, const std::optional<std::filesystem::path>& camera,

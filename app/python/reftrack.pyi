@@ -51,7 +51,11 @@ class Tracker:
 
     @staticmethod
     def open_map(
-        folder: StrPath, *, params: Params = None, motion_model: Optional[StrPath] = None
+        folder: StrPath,
+        *,
+        params: Params = None,
+        motion_model: Optional[StrPath] = None,
+        realtime: bool = False,
     ) -> Tracker: ...
     @staticmethod
     def open_reference(

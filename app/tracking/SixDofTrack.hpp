@@ -32,6 +32,9 @@ struct SixDofTrackOptions {
   std::optional<double> cubeEdge;
   bool debugOverlay = false;  // the recording also shows corners, matches and the status label
   bool coldStarts = false;    // reset the tracker before every frame
+  // The search after a loss is budgeted in measured CPU time (as a live camera always is)
+  // instead of the modelled cost of its work, with which a file gives the same poses every run.
+  bool realtime = false;
 };
 
 // Returns the number of frames processed; throws reftrack::Error on bad input.

@@ -77,6 +77,9 @@ class FrameTracker {
   // Where the overlay object stands by default in the tracked scene (6-DOF: on its map's
   // dominant plane, OverlaySettings::applyScene); nullopt: no scene known.
   virtual std::optional<ScenePlacement> scenePlacement() const { return std::nullopt; }
+  // 6-DOF: the search after a loss budgeted in measured CPU time (a live camera) instead of the
+  // modelled cost of its work (MultiReferenceTracker::setBudgetClock); the others ignore it.
+  virtual void setRealTimeBudget(bool /*on*/) {}
 };
 
 }  // namespace reftrack::app

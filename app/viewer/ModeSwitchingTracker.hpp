@@ -30,6 +30,10 @@ class ModeSwitchingTracker : public FrameTracker {
   std::optional<ScenePlacement> scenePlacement() const override {
     return sixDof_ ? sixDof_->scenePlacement() : std::nullopt;
   }
+  // Given to the 6-DOF tracker (whichever mode is active).
+  void setRealTimeBudget(bool on) override {
+    if (sixDof_) sixDof_->setRealTimeBudget(on);
+  }
 
  private:
   FrameTracker& active() const;

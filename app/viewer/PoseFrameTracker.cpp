@@ -1,6 +1,7 @@
 #include "app/viewer/PoseFrameTracker.hpp"
 
 #include "engine/core/Error.hpp"
+#include "engine/core/ThreadCpuClock.hpp"
 #include "engine/geometry/FundamentalMatrix.hpp"
 
 namespace reftrack::app {
@@ -63,6 +64,10 @@ TrackingResult PoseFrameTracker::process(const cv::Mat& frame, int, double) {
 }
 
 void PoseFrameTracker::applyParams(const TrackerParams& params) { tracker_.setParams(params); }
+
+void PoseFrameTracker::setRealTimeBudget(bool on) {
+  tracker_.setBudgetClock(on ? std::function<double()>(processCpuMs) : std::function<double()>());
+}
 
 void PoseFrameTracker::setOverlayPoints(const std::vector<Eigen::Vector3d>& worldPoints) {
   if (worldPoints != tracker_.overlayPoints()) tracker_.setOverlayPoints(worldPoints);

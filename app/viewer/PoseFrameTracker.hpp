@@ -23,6 +23,7 @@ class PoseFrameTracker : public FrameTracker {
   void setOverlayPoints(const std::vector<Eigen::Vector3d>& worldPoints) override;
   // The map's dominant plane (placeOnDominantPlane; nullopt when it has none), found once.
   std::optional<ScenePlacement> scenePlacement() const override { return scene_; }
+  void setRealTimeBudget(bool on) override;
   const MultiReferenceTracker& tracker() const { return tracker_; }
   MultiReferenceTracker& tracker() { return tracker_; }
   const MultiReferenceResult& last() const { return last_; }

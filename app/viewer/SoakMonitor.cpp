@@ -5,8 +5,10 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <utility>
 
 #include "engine/core/Error.hpp"
 
@@ -32,23 +34,26 @@ double processCpuSeconds() {
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
-SoakMonitor::SoakMonitor(int interval, int warmup, std::ostream* out)
-    : interval_(interval),
-      warmup_(warmup),
-      out_(out),
-      intervalStart_(std::chrono::steady_clock::now()),
-      intervalCpuStart_(processCpuSeconds()) {
+double SoakClocks::steadySeconds() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+SoakMonitor::SoakMonitor(int interval, int warmup, std::ostream* out, SoakClocks clocks)
+    : interval_(interval), warmup_(warmup), out_(out), clocks_(std::move(clocks)) {
   if (interval < 1) throw Error("soak report interval must be at least 1 frame");
   if (warmup < 0) throw Error("soak warm-up must not be negative");
+  if (!clocks_.wallSeconds || !clocks_.cpuSeconds) throw Error("soak monitor: a clock is missing");
+  intervalStart_ = clocks_.wallSeconds();
+  intervalCpuStart_ = clocks_.cpuSeconds();
 }
 
 void SoakMonitor::frameDone() {
   ++frames_;
   if (frames_ % interval_ != 0) return;
-  const auto now = std::chrono::steady_clock::now();
-  const double seconds = std::chrono::duration<double>(now - intervalStart_).count();
+  const double now = clocks_.wallSeconds();
+  const double seconds = now - intervalStart_;
   intervalStart_ = now;
-  const double cpu = processCpuSeconds();
+  const double cpu = clocks_.cpuSeconds();
   const double cpuSeconds = cpu - intervalCpuStart_;
   intervalCpuStart_ = cpu;
   SoakSample s;

@@ -2,8 +2,8 @@
 // SoakMonitor: resident memory and frame rate of a long viewer run, sampled every `interval`
 // frames (`reftrack view --report-every N`). After `warmup` frames it measures the memory growth
 // and compares the rate of the last interval with the first one after warm-up.
-#include <chrono>
 #include <cstddef>
+#include <functional>
 #include <optional>
 #include <ostream>
 #include <vector>
@@ -40,20 +40,28 @@ struct SoakSummary {
   bool complete = false;  // at least two samples after warm-up (otherwise the figures are unset)
 };
 
+// The clocks a SoakMonitor reads, in seconds: wall (steady) time and the process's CPU time by
+// default; a test gives its own to check the figures exactly.
+struct SoakClocks {
+  std::function<double()> wallSeconds = steadySeconds;
+  std::function<double()> cpuSeconds = processCpuSeconds;
+  static double steadySeconds();
+};
+
 class SoakMonitor {
  public:
   // Prints one line per sample to `out` (nullptr: silent). Throws reftrack::Error for
   // interval < 1 or warmup < 0.
-  SoakMonitor(int interval, int warmup, std::ostream* out);
+  SoakMonitor(int interval, int warmup, std::ostream* out, SoakClocks clocks = {});
   void frameDone();  // call once per processed frame
   SoakSummary summary() const;
 
  private:
   int interval_, warmup_;
   std::ostream* out_;
+  SoakClocks clocks_;
   int frames_ = 0;
-  std::chrono::steady_clock::time_point intervalStart_;
-  double intervalCpuStart_ = 0;
+  double intervalStart_ = 0, intervalCpuStart_ = 0;
   std::vector<SoakSample> samples_;
 };
 

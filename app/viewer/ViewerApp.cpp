@@ -136,6 +136,9 @@ struct Session {
   Frame first;
   std::vector<render::Texture2D> referenceThumbnails;  // the References panel's images
   bool trackerOnLiveMap = false;  // the tracker runs on the map built in the Map panel
+  // The 6-DOF search after a loss is budgeted in measured CPU time (a live camera, or
+  // --realtime), else in the modelled cost of its work (recorded input: the same every run).
+  bool realTimeBudget = false;
 };
 
 // The References panel's thumbnails (GL textures, ~96 px wide) of the tracker's reference map;
@@ -213,7 +216,11 @@ Session openSession(const ViewerOptions& options, ViewerState& state) {
     s.tracker = options.makeTracker(s.camera, state.settings.tracker);
   else if (sim && !mapping)
     s.tracker = std::make_unique<TrajectoryReplayTracker>(sim->groundTruth(), source->fps());
-  if (s.tracker) s.tracker->applyParams(state.settings.tracker);
+  s.realTimeBudget = options.realtime || source->isLive();
+  if (s.tracker) {
+    s.tracker->applyParams(state.settings.tracker);
+    s.tracker->setRealTimeBudget(s.realTimeBudget);
+  }
   // Ground truth beside a live tracker (a replayed trajectory is its own truth): the true overlay
   // error in the Stats panel.
   const bool liveTracker = (s.tracker && options.poses.empty() && options.makeTracker) || mapping;
@@ -408,6 +415,7 @@ struct FrameLoop {
     try {
       auto tracker = std::make_unique<PoseFrameTracker>(std::move(map), params);
       tracker->applyParams(params);
+      tracker->setRealTimeBudget(session.realTimeBudget);
       session.tracker = std::move(tracker);
       session.trackerOnLiveMap = true;
       state.trackerName = session.tracker->name();
@@ -428,6 +436,7 @@ struct FrameLoop {
       if (session.makeTracker) {
         tracker = session.makeTracker(camera, state.settings.tracker);
         tracker->applyParams(state.settings.tracker);
+        tracker->setRealTimeBudget(session.realTimeBudget);
       }
       session.camera = camera;
       if (tracker) {

@@ -74,6 +74,9 @@ struct ViewerOptions {
   // The tracking mode to start in, over the params file's (`view` sets it when only one of
   // --map / --reference is given).
   std::optional<TrackingMode> mode;
+  // `--realtime`: the 6-DOF search after a loss is budgeted in measured CPU time, as for a live
+  // camera (always so for a live source), instead of the modelled cost of its work.
+  bool realtime = false;
   void check() const;  // throws reftrack::Error naming the bad option
 };
 

@@ -8,6 +8,7 @@
 
 #include "engine/config/TrackerParams.hpp"
 #include "engine/core/Error.hpp"
+#include "engine/core/ThreadCpuClock.hpp"
 #include "engine/estimation/MotionModelFile.hpp"
 #include "engine/geometry/PinholeCamera.hpp"
 #include "engine/homography/HomographyTracker.hpp"
@@ -223,6 +224,12 @@ void Tracker::reset() {
 void Tracker::setOverlayPoints(const std::vector<Eigen::Vector3d>& worldPoints) {
   if (!impl_->sixDof) throw Error("tracker: overlay points apply to 6-DOF tracking (a map)");
   impl_->sixDof->setOverlayPoints(worldPoints);
+}
+
+void Tracker::setRealTimeBudget(bool on) {
+  if (impl_->sixDof)
+    impl_->sixDof->setBudgetClock(on ? std::function<double()>(processCpuMs)
+                                     : std::function<double()>());
 }
 
 Tracker::Mode Tracker::mode() const { return impl_->mode; }

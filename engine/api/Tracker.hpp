@@ -88,6 +88,12 @@ class Tracker {
   // part of the map's points (the default). Throws reftrack::Error in homography mode or for a
   // point that is not finite.
   void setOverlayPoints(const std::vector<Eigen::Vector3d>& worldPoints);
+  // 6-DOF: how the search after a loss is budgeted (relocalisation.budget_*). Off (the default):
+  // in the modelled cost of its work, so the same frames give the same poses on any machine and
+  // under any load (recorded input). On: in the CPU time it takes (a live camera, where the
+  // budget must bound the real cost; results then depend on the machine's load). No effect in
+  // homography mode.
+  void setRealTimeBudget(bool on);
 
   Mode mode() const;
   // The frame size track() accepts: the map's (6-DOF), the camera's (homography mode with a

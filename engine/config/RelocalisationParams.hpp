@@ -55,13 +55,16 @@ struct RelocalisationParams : ParamSection<RelocalisationParams> {
   int attemptEveryFrames = 1;    // while lost, try at most on every n-th frame
   // The time budget while lost (RelocalisationBudget): the recovery (re-seed, start near a
   // reference, relocalisation) spends at most budget_burst_ms plus budget_ms_per_frame per lost
-  // frame, in process CPU time as measured; a frame the budget leaves out is not searched, and a
-  // blank frame (a covered lens) costs nothing. At 30 fps 3.0 ms per frame is 9% of one core;
-  // the burst lets the first ~4 searches (45-50 ms each) come on consecutive frames: a cut, a
-  // short look away. Tracking again refills it. `bench-real --order away:900 --away-input`
-  // (the other shared clip as the other scene): desk 3.26 ms per frame while away (9.8% of a
-  // core), back 1 frame after the return; shelf 3.31 ms (9.9%), back after 15 frames (one
-  // search's cost over the rate: the longest wait). Without a budget: 8.1 ms (24%).
+  // frame; a frame the budget leaves out is not searched, and a blank frame (a covered lens)
+  // costs nothing. Recorded input is charged the modelled cost of the work (RecoveryWork: CPU
+  // milliseconds of one core of the development machine, the same on any machine and load), a
+  // live camera the process CPU time as measured (MultiReferenceTracker::setBudgetClock). At 30
+  // fps 3.0 ms per frame is 9% of one core; the burst lets the first ~4 searches (45-50 ms each)
+  // come on consecutive frames: a cut, a short look away. Tracking again refills it. `bench-real
+  // --order away:900 --away-input` (the other shared clip as the other scene): desk 3.26 ms per
+  // frame while away (9.8% of a core), back 1 frame after the return; shelf 3.31 ms (9.9%), back
+  // after 15 frames (one search's cost over the rate: the longest wait). Without a budget: 8.1 ms
+  // (24%).
   double budgetMsPerFrame = 3.0;
   double budgetBurstMs = 200.0;
   // The inliers must cover at least this many cells of a 4x4 grid over the frame: a pose held

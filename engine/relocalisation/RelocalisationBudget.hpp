@@ -1,8 +1,10 @@
 #pragma once
-// RelocalisationBudget: when a lost tracker may try to relocalise. A bucket of CPU milliseconds:
+// RelocalisationBudget: when a lost tracker may try to relocalise. A bucket of milliseconds:
 // full (burstMs) while tracking, refilled by msPerFrame per lost frame (up to burstMs), emptied
-// by what each attempt spent; an attempt is due while it holds anything. So attempts come on
+// by what each attempt cost; an attempt is due while it holds anything. So attempts come on
 // every frame at first and then back off, spending at most burstMs + msPerFrame per lost frame.
+// The bucket only counts: what an attempt costs is the caller's (MultiReferenceTracker charges
+// the modelled cost of the work on recorded input, RecoveryWork, or measured CPU time live).
 namespace reftrack {
 
 class RelocalisationBudget {
@@ -14,7 +16,7 @@ class RelocalisationBudget {
 
   void refill();          // tracking again: the whole burst is available
   bool lostFrame();       // one more lost frame: its share is added; true when an attempt is due
-  void spent(double ms);  // what an attempt cost (CPU ms; negative or NaN counts as 0)
+  void spent(double ms);  // what an attempt cost (ms; negative or NaN counts as 0)
 
   double available() const { return bucketMs_; }  // may be negative right after an attempt
   double spentInAll() const { return spentMs_; }  // every attempt's cost since construction

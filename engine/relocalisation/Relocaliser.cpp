@@ -40,6 +40,19 @@ struct IndexedReference {
   std::vector<cv::Point3f> points;  // their world points
 };
 
+// Megapixels a keypoint detection works on: the image reduced by `scale`; ORB's finer levels
+// above it (upsampled 1.2x each) add their areas.
+double detectedMegapixels(cv::Size image, double scale, int finerLevels = 0) {
+  double levels = 1.0, level = 1.0;
+  for (int l = 0; l < finerLevels; ++l) levels += (level *= 1.44);
+  return 1e-6 * static_cast<double>(image.area()) * scale * scale * levels;
+}
+
+// Descriptor distances of a brute-force match of `query` rows against `train` rows, in millions.
+double comparisonsMillions(const cv::Mat& query, const cv::Mat& train) {
+  return 1e-6 * static_cast<double>(query.rows) * static_cast<double>(train.rows);
+}
+
 RigidPose poseFrom(const cv::Mat& rvec, const cv::Mat& tvec) {
   Vector6d x;
   x << tvec.at<double>(0), tvec.at<double>(1), tvec.at<double>(2), rvec.at<double>(0),
@@ -115,17 +128,17 @@ struct Relocaliser::Impl {
   };
 
   // The references to match: all when there are few, else the best-voted ones.
-  std::vector<int> retrieve(const std::vector<cv::KeyPoint>& keypoints,
-                            const cv::Mat& descriptors) const;
+  std::vector<int> retrieve(const std::vector<cv::KeyPoint>& keypoints, const cv::Mat& descriptors,
+                            KeypointWork& work) const;
   RelocalisationAttempt locate(const cv::Mat& frame, double scale) const;
   void checkFrame(const cv::Mat& frame) const;
   KeypointSupport ratioTestSupport(const cv::Mat& frame, const RigidPose& worldToCamera) const;
   int agreeing(const RigidPose& worldToCamera, const std::vector<cv::Point3f>& points,
-               const std::vector<cv::Point2f>& pixels) const;
+               const std::vector<cv::Point2f>& pixels, double thresholdScale = 1.0) const;
   // Per frame keypoint: its closest ratio-test match over the references `matched` (indices into
-  // references), or reference -1.
+  // references), or reference -1. Every call counts what it did into `work` (KeypointWork).
   std::vector<Match> bestMatches(const cv::Mat& descriptors, std::size_t keypoints,
-                                 const std::vector<int>& matched) const;
+                                 const std::vector<int>& matched, KeypointWork& work) const;
   // The pose from the frame's keypoints matched to the references `matched` (indices into
   // references), guided matching and the acceptance; the first inliers must be at least
   // `minInlierRatio` of the matches.
@@ -143,7 +156,8 @@ struct Relocaliser::Impl {
   void guidedMatches(const std::vector<cv::KeyPoint>& keypoints, const cv::Mat& descriptors,
                      const cv::Mat& rvec, const cv::Mat& tvec, double radius, float maxDistance,
                      const std::vector<char>& used, std::vector<cv::Point3f>& object,
-                     std::vector<cv::Point2f>& image, std::vector<int>& matchReference) const;
+                     std::vector<cv::Point2f>& image, std::vector<int>& matchReference,
+                     KeypointWork& work) const;
 };
 
 Relocaliser::Relocaliser(const MultiReferenceMap& map, const RelocalisationParams& params) {
@@ -187,8 +201,8 @@ KeypointSupport Relocaliser::ratioTestSupport(const cv::Mat& frame,
 }
 
 int Relocaliser::agreeing(const RigidPose& worldToCamera, const std::vector<cv::Point3f>& points,
-                          const std::vector<cv::Point2f>& pixels) const {
-  return impl_->agreeing(worldToCamera, points, pixels);
+                          const std::vector<cv::Point2f>& pixels, double thresholdScale) const {
+  return impl_->agreeing(worldToCamera, points, pixels, thresholdScale);
 }
 
 RelocalisationAttempt Relocaliser::locate(const cv::Mat& frame, bool fullResolution) const {
@@ -202,7 +216,7 @@ RelocalisationAttempt Relocaliser::locate(const cv::Mat& frame, bool fullResolut
 }
 
 std::vector<int> Relocaliser::Impl::retrieve(const std::vector<cv::KeyPoint>& keypoints,
-                                             const cv::Mat& descriptors) const {
+                                             const cv::Mat& descriptors, KeypointWork& work) const {
   std::vector<int> all(references.size());
   std::iota(all.begin(), all.end(), 0);
   if (static_cast<int>(references.size()) <= params.referencesToMatch) return all;
@@ -218,10 +232,12 @@ std::vector<int> Relocaliser::Impl::retrieve(const std::vector<cv::KeyPoint>& ke
   cv::Mat voting;
   for (std::size_t i = 0; i < voters; ++i) voting.push_back(descriptors.row(order[i]));
   std::vector<std::size_t> votes(references.size(), 0);
-  for (std::size_t r = 0; r < references.size(); ++r)
+  for (std::size_t r = 0; r < references.size(); ++r) {
     votes[r] = matchDescriptors(voting, references[r].descriptors, features.normType(),
                                 params.ratio, false)
                    .size();
+    work.comparisonsMillions += comparisonsMillions(voting, references[r].descriptors);
+  }
   std::stable_sort(all.begin(), all.end(), [&](int a, int b) {
     return votes[static_cast<std::size_t>(a)] > votes[static_cast<std::size_t>(b)];
   });
@@ -261,7 +277,7 @@ void Relocaliser::Impl::guidedMatches(const std::vector<cv::KeyPoint>& keypoints
                                       const std::vector<char>& used,
                                       std::vector<cv::Point3f>& object,
                                       std::vector<cv::Point2f>& image,
-                                      std::vector<int>& matchReference) const {
+                                      std::vector<int>& matchReference, KeypointWork& work) const {
   // The unused frame keypoints on a grid of `radius` cells (CornerGrid: one contiguous array,
   // where a vector per cell cost a heap allocation per keypoint on every attempt).
   const cv::Size size = camera.imageSize();
@@ -282,6 +298,7 @@ void Relocaliser::Impl::guidedMatches(const std::vector<cv::KeyPoint>& keypoints
   cv::Mat R;
   cv::Rodrigues(rvec, R);
   const double r2 = radius * radius;
+  long long distances = 0;
   for (std::size_t r = 0; r < references.size(); ++r) {
     const IndexedReference& ref = references[r];
     std::vector<cv::Point2f> projected;
@@ -301,12 +318,14 @@ void Relocaliser::Impl::guidedMatches(const std::vector<cv::KeyPoint>& keypoints
         // hardware popcount; measured 6.7 -> 2.7 ms of guided matching per attempt.
         const double distance = descriptorDistance(descriptors, k, ref.descriptors,
                                                    static_cast<int>(p), features.normType());
+        ++distances;
         Guided& b = best[static_cast<std::size_t>(k)];
         if (distance <= maxDistance && (b.reference < 0 || distance < b.distance))
           b = {static_cast<int>(r), static_cast<int>(p), distance};
       }
     }
   }
+  work.comparisonsMillions += 1e-6 * static_cast<double>(distances);
   for (std::size_t k = 0; k < best.size(); ++k) {
     if (best[k].reference < 0) continue;
     object.push_back(references[static_cast<std::size_t>(best[k].reference)]
@@ -328,22 +347,28 @@ void Relocaliser::Impl::checkFrame(const cv::Mat& frame) const {
 }
 
 std::vector<Relocaliser::Impl::Match> Relocaliser::Impl::bestMatches(
-    const cv::Mat& descriptors, std::size_t keypoints, const std::vector<int>& matched) const {
+    const cv::Mat& descriptors, std::size_t keypoints, const std::vector<int>& matched,
+    KeypointWork& work) const {
   std::vector<Match> best(keypoints);
-  for (int r : matched)
+  for (int r : matched) {
+    work.comparisonsMillions +=
+        comparisonsMillions(descriptors, references[static_cast<std::size_t>(r)].descriptors);
     for (const cv::DMatch& m :
          matchDescriptors(descriptors, references[static_cast<std::size_t>(r)].descriptors,
                           features.normType(), params.ratio, false)) {
       Match& b = best[static_cast<std::size_t>(m.queryIdx)];
       if (b.reference < 0 || m.distance < b.distance) b = {r, m.trainIdx, m.distance};
     }
+  }
   return best;
 }
 
 int Relocaliser::Impl::agreeing(const RigidPose& worldToCamera,
                                 const std::vector<cv::Point3f>& points,
-                                const std::vector<cv::Point2f>& pixels) const {
-  const double threshold = params.reprojectionPx * resolutionScale(camera.imageSize());
+                                const std::vector<cv::Point2f>& pixels,
+                                double thresholdScale) const {
+  const double threshold =
+      thresholdScale * params.reprojectionPx * resolutionScale(camera.imageSize());
   int n = 0;
   for (std::size_t i = 0; i < points.size(); ++i) {
     const Eigen::Vector3d Xc =
@@ -362,9 +387,11 @@ KeypointSupport Relocaliser::Impl::ratioTestSupport(const cv::Mat& frame,
   cv::Mat descriptors;
   features.detectAndDescribe(frame, params.featuresPerFrameFor(camera.imageSize()), keypoints,
                              descriptors, 0, 0, frameScale());
+  KeypointSupport support;
+  support.work.detectedMegapixels = detectedMegapixels(frame.size(), frameScale());
   std::vector<int> all(references.size());
   std::iota(all.begin(), all.end(), 0);
-  const std::vector<Match> best = bestMatches(descriptors, keypoints.size(), all);
+  const std::vector<Match> best = bestMatches(descriptors, keypoints.size(), all, support.work);
   std::vector<cv::Point3f> points;
   std::vector<cv::Point2f> pixels;
   for (std::size_t k = 0; k < best.size(); ++k) {
@@ -373,7 +400,6 @@ KeypointSupport Relocaliser::Impl::ratioTestSupport(const cv::Mat& frame,
                          .points[static_cast<std::size_t>(best[k].point)]);
     pixels.push_back(keypoints[k].pt);
   }
-  KeypointSupport support;
   support.matches = static_cast<int>(points.size());
   support.agreeing = agreeing(worldToCamera, points, pixels);
   return support;
@@ -386,75 +412,60 @@ RelocalisationAttempt Relocaliser::Impl::locate(const cv::Mat& frame, double sca
   RelocalisationAttempt out;
   std::vector<cv::KeyPoint> keypoints;
   cv::Mat descriptors;
-  const double detectStart = threadCpuMs();
   features.detectAndDescribe(frame, params.featuresPerFrameFor(size), keypoints, descriptors, 0, 0,
                              scale);
-  const double detectCpuMs = threadCpuMs() - detectStart;
+  KeypointWork work;
+  work.detectedMegapixels = detectedMegapixels(size, scale);
   if (static_cast<int>(keypoints.size()) < params.minInliers) {
     out.message = "too few keypoints (" + std::to_string(keypoints.size()) +
                   "): black, textureless or blurred frame";
     out.stop = RecoveryStage::TooFewKeypoints;
-    out.detectCpuMs = detectCpuMs;
+    out.work = work;
     return out;
   }
+  // Every way out carries the work done up to it.
+  const auto done = [&work](RelocalisationAttempt attempt) {
+    attempt.work += work;
+    return attempt;
+  };
 
   // Retrieval ranks the references by the votes of the strongest keypoints; when the best-voted
   // ones give no pose, all are matched (measured on 40 random views of 8 walkaround
   // references: 3 of the 4 views the top two left without a pose were relocalised by all 8; the
   // fallback costs only on such frames, an attempt's median stays that of matching two).
-  const double retrieveStart = threadCpuMs();
-  const std::vector<int> retrieved = retrieve(keypoints, descriptors);
-  const double retrieveCpuMs = threadCpuMs() - retrieveStart;
-  // locateWith, its pose stage timed (all it spent beyond its matching).
-  const auto timed = [&](const std::vector<cv::KeyPoint>& k, const cv::Mat& d,
-                         const std::vector<int>& refs, double minRatio) {
-    const double t0 = threadCpuMs();
-    RelocalisationAttempt a = locateWith(frame, k, d, refs, minRatio);
-    a.poseCpuMs = threadCpuMs() - t0 - a.matchCpuMs;
-    return a;
-  };
-  // Each result carries the stages' CPU times of everything spent so far.
-  const auto spent = [&](RelocalisationAttempt& a, double extraDetectMs) {
-    a.detectCpuMs += detectCpuMs + extraDetectMs;
-    a.matchCpuMs += retrieveCpuMs;
-  };
-  RelocalisationAttempt first = timed(keypoints, descriptors, retrieved, params.minInlierRatio);
-  spent(first, 0.0);
-  if (first.candidate) return first;
+  const std::vector<int> retrieved = retrieve(keypoints, descriptors, work);
+  RelocalisationAttempt first =
+      locateWith(frame, keypoints, descriptors, retrieved, params.minInlierRatio);
+  work += first.work;
+  first.work = {};
+  if (first.candidate) return done(std::move(first));
   std::vector<int> all(references.size());
   std::iota(all.begin(), all.end(), 0);
   if (retrieved.size() != references.size()) {
-    RelocalisationAttempt second = timed(keypoints, descriptors, all, params.minInlierRatio);
-    second.detectCpuMs += first.detectCpuMs;
-    second.matchCpuMs += first.matchCpuMs;
-    second.poseCpuMs += first.poseCpuMs;
-    if (second.candidate) return second;
+    RelocalisationAttempt second =
+        locateWith(frame, keypoints, descriptors, all, params.minInlierRatio);
+    if (second.candidate) return done(std::move(second));
+    work += second.work;
     first.message += "; with all references: " + second.message;
-    first.detectCpuMs = second.detectCpuMs;
-    first.matchCpuMs = second.matchCpuMs;
-    first.poseCpuMs = second.poseCpuMs;
   }
   // A far view sees the references' finest keypoints below its own finest ORB scale: the frame
   // is detected again with finer (upsampled) pyramid levels and matched to every reference.
   // Only frames that gave no pose pay for it; the acceptance is the same.
-  if (params.keypoints != "orb" || params.frameFinerLevels == 0) return first;
+  if (params.keypoints != "orb" || params.frameFinerLevels == 0) return done(std::move(first));
   std::vector<cv::KeyPoint> fine;
   cv::Mat fineDescriptors;
-  const double fineStart = threadCpuMs();
   features.detectAndDescribe(frame,
                              params.featuresPerFrameFor(size) * (4 + params.frameFinerLevels) / 4,
                              fine, fineDescriptors, params.frameFinerLevels);
-  const double fineCpuMs = threadCpuMs() - fineStart;
+  work.detectedMegapixels += detectedMegapixels(size, 1.0, params.frameFinerLevels);
   // Its matches come from 1 + levels/4 times the keypoints against every reference (not the two
   // retrieved): the false ones multiply, the mapped region's true ones hardly. The inlier share
   // bound is halved for it (measured on seeds 1-3 of experiment-relocalisation: the far views it
   // left without a pose had 64-161 inliers at 13-24% of ~500 matches, pose sigma <= 0.23 deg).
-  RelocalisationAttempt finer = timed(fine, fineDescriptors, all, 0.5 * params.minInlierRatio);
+  RelocalisationAttempt finer =
+      locateWith(frame, fine, fineDescriptors, all, 0.5 * params.minInlierRatio);
   finer.message = first.message + "; with finer frame levels: " + finer.message;
-  finer.detectCpuMs += first.detectCpuMs + fineCpuMs;
-  finer.matchCpuMs += first.matchCpuMs;
-  finer.poseCpuMs += first.poseCpuMs;
-  return finer;
+  return done(std::move(finer));
 }
 
 RelocalisationAttempt Relocaliser::Impl::locateWith(const cv::Mat& frame,
@@ -464,10 +475,8 @@ RelocalisationAttempt Relocaliser::Impl::locateWith(const cv::Mat& frame,
                                                     double minInlierRatio) const {
   const cv::Size size = camera.imageSize();
   RelocalisationAttempt out;
-  const double matchStart = threadCpuMs();
   // 2D-3D matches: each frame keypoint keeps its closest ratio-test match over the references.
-  const std::vector<Match> best = bestMatches(descriptors, keypoints.size(), matched);
-  out.matchCpuMs = threadCpuMs() - matchStart;
+  const std::vector<Match> best = bestMatches(descriptors, keypoints.size(), matched, out.work);
   std::vector<cv::Point3f> object;
   std::vector<cv::Point2f> image;
   std::vector<int> matchReference;
@@ -497,6 +506,7 @@ RelocalisationAttempt Relocaliser::Impl::locateWith(const cv::Mat& frame,
   const double threshold = params.reprojectionPx * resolutionScale(size);
   cv::Mat rvec, tvec;
   std::vector<int> ransacInliers;
+  ++out.work.poseSearches;
   const bool found =
       cv::solvePnPRansac(object, image, K, distortion, rvec, tvec, false, params.ransacIterations,
                          static_cast<float>(threshold), 0.999, ransacInliers, cv::SOLVEPNP_AP3P);
@@ -574,7 +584,7 @@ RelocalisationAttempt Relocaliser::Impl::locateWith(const cv::Mat& frame,
       used[static_cast<std::size_t>(matchKeypoint[u])] = 1;
     }
     guidedMatches(keypoints, descriptors, rvec, tvec, 2.0 * threshold, guidedMaxDistance, used,
-                  guidedObject, guidedImage, guidedReference);
+                  guidedObject, guidedImage, guidedReference, out.work);
     object = std::move(guidedObject);
     image = std::move(guidedImage);
     matchReference = std::move(guidedReference);
@@ -631,12 +641,13 @@ RelocalisationAttempt Relocaliser::Impl::locateWith(const cv::Mat& frame,
       cv::Mat zoomedDescriptors;
       features.detectAndDescribe(magnified, params.featuresPerFrameFor(size), zoomed,
                                  zoomedDescriptors);
+      out.work.detectedMegapixels += detectedMegapixels(magnified.size(), 1.0);
       for (cv::KeyPoint& k : zoomed) k.pt = magnifiedToFrame(k.pt, zoom, roi.tl());
       std::vector<cv::Point3f> zObject;
       std::vector<cv::Point2f> zImage;
       std::vector<int> zReference;
       guidedMatches(zoomed, zoomedDescriptors, rvec, tvec, 2.0 * threshold, guidedMaxDistance,
-                    std::vector<char>(zoomed.size(), 0), zObject, zImage, zReference);
+                    std::vector<char>(zoomed.size(), 0), zObject, zImage, zReference, out.work);
       if (static_cast<int>(zObject.size()) > static_cast<int>(inliers.size())) {
         cv::Mat zr = rvec.clone(), zt = tvec.clone();
         std::vector<int> zInliers(zObject.size());

@@ -15,6 +15,7 @@
 #include "engine/geometry/RigidPose.hpp"
 #include "engine/reference/MultiReferenceMap.hpp"
 #include "engine/relocalisation/RecoveryStage.hpp"
+#include "engine/relocalisation/RecoveryWork.hpp"
 #include "engine/relocalisation/ReferenceKeypointBuilder.hpp"  // buildReferenceKeypoints
 
 namespace reftrack {
@@ -33,8 +34,9 @@ struct RelocalisationCandidate {
 };
 
 struct KeypointSupport {
-  int matches = 0;   // frame keypoints with a ratio-test match to a keypoint with a 3D point
-  int agreeing = 0;  // ... whose 3D point the pose projects within the inlier threshold
+  int matches = 0;    // frame keypoints with a ratio-test match to a keypoint with a 3D point
+  int agreeing = 0;   // ... whose 3D point the pose projects within the inlier threshold
+  KeypointWork work;  // what finding them did, counted (the recovery's cost model)
 };
 
 struct RelocalisationAttempt {
@@ -42,12 +44,9 @@ struct RelocalisationAttempt {
   std::string message;                               // why not, or what was found
   // The search stage that stopped it (TooFewKeypoints .. InlierSpread); None with a candidate.
   RecoveryStage stop = RecoveryStage::None;
-  // The calling thread's CPU time of the stages: the frame's keypoints (detection and
-  // description), their matching to the map (retrieval included), the pose (PnP-RANSAC,
-  // refinement, guided matching, acceptance).
-  double detectCpuMs = 0.0, matchCpuMs = 0.0, poseCpuMs = 0.0;
   double ms = 0.0;     // wall time of locate()
   double cpuMs = 0.0;  // the process's CPU time of locate() (OpenCV's worker threads included)
+  KeypointWork work;   // what locate() did, counted: the same for the same frame on any machine
 };
 
 class Relocaliser {
@@ -67,10 +66,10 @@ class Relocaliser {
   // one period off on repeated texture gets few. Same frame contract as locate().
   KeypointSupport ratioTestSupport(const cv::Mat& frame, const RigidPose& worldToCamera) const;
   // How many of the 3D points (world) `worldToCamera` projects (lens distortion included)
-  // within the PnP inlier threshold of their pixels (as detected): e.g. a candidate's
-  // distinctive inliers under a refined pose.
+  // within the PnP inlier threshold (times thresholdScale) of their pixels (as detected): e.g. a
+  // candidate's distinctive inliers under a refined pose.
   int agreeing(const RigidPose& worldToCamera, const std::vector<cv::Point3f>& points,
-               const std::vector<cv::Point2f>& pixels) const;
+               const std::vector<cv::Point2f>& pixels, double thresholdScale = 1.0) const;
   const PinholeCamera& camera() const;
 
  private:

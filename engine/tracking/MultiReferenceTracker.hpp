@@ -11,6 +11,7 @@
 // usable keypoint layer; else said once in `notice`) proposes a pose from anywhere in the mapped
 // volume, which the pair best placed for it refines and verifies on the same frame.
 #include <Eigen/Core>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -22,6 +23,7 @@
 #include "engine/estimation/MotionModel.hpp"
 #include "engine/reference/MultiReferenceMap.hpp"
 #include "engine/relocalisation/RecoveryStage.hpp"
+#include "engine/relocalisation/RecoveryWork.hpp"
 #include "engine/tracking/PoseTracker.hpp"
 
 namespace reftrack {
@@ -36,9 +38,17 @@ struct RelocalisationReport {
   // What stopped the attempt (the relocaliser's search stage, the seeded pass, the check by
   // correlation, a start rule) or Verified; None when there was no attempt.
   RecoveryStage stop = RecoveryStage::None;
-  // The search's stages, thread CPU: keypoints, matching to the map, pose (RelocalisationAttempt).
-  double detectCpuMs = 0.0, matchCpuMs = 0.0, poseCpuMs = 0.0;
   std::string message;
+};
+
+// The recovery while lost on one frame (re-seed, start near a reference, relocaliser): what it
+// did and what the budget (relocalisation.budget_*) was charged for it.
+struct RecoveryReport {
+  bool ran = false;         // the frame was searched (not left alone by the budget, not blank)
+  RecoveryWork work;        // the work, counted
+  double modelledMs = 0.0;  // its modelled cost (RecoveryCostModel): the same on any machine
+  double chargedMs = 0.0;   // what the budget was charged: modelledMs, or the budget clock's time
+  double cpuMs = 0.0;       // the process CPU time it took, measured (reported, decides nothing)
 };
 
 struct MultiReferenceResult {
@@ -49,6 +59,7 @@ struct MultiReferenceResult {
   // Correlation, DistinctiveCorners, KeypointSupport) or Verified; NotSearched or BlankFrame when
   // the recovery tried nothing on the frame; None when tracking needed no start.
   RecoveryStage start = RecoveryStage::None;
+  RecoveryReport recovery;
   // Said once, with the first frame after construction or a parameter change: why the tracker
   // runs without relocalisation when it was asked for (a map with a thin or no keypoint layer).
   std::string notice;
@@ -86,9 +97,15 @@ class MultiReferenceTracker {
   TrackingState state() const;
   std::pair<int, int> referencesInUse() const;  // (-1, -1) before the first pose
   int relocalisationAttempts() const;           // since construction
-  // CPU time (ms, every thread) the recovery while lost (re-seeds, starts near a reference,
-  // relocalisation) spent since construction: what the budget (relocalisation.budget_*) counts.
-  double relocalisationCpuMs() const;
+  // How the recovery while lost (re-seeds, starts near a reference, relocalisation) is charged to
+  // its budget (relocalisation.budget_*). By default (an empty clock) the modelled cost of its
+  // work as counted (RecoveryWork): every decision then depends on the frames and parameters
+  // only, for recorded input. With a clock (milliseconds of CPU, e.g. processCpuMs for a live
+  // camera) the time it measures: the budget then bounds the real cost on this machine, and the
+  // decisions depend on its load. Takes effect on the next frame.
+  void setBudgetClock(std::function<double()> cpuMs);
+  // What the budget was charged since construction (ms, modelled or measured as above).
+  double recoveryChargedMs() const;
   // Why relocalisation is unavailable (no usable keypoint layer, or turned off); empty when on.
   const std::string& relocalisationUnavailable() const;
 

@@ -1,15 +1,16 @@
 """The Python module `reftrack` (python/), run by CTest with Debian's python3 on the build tree.
 
 The poses tracked from Python on a simulated clip (simulated_clip.py) are checked against the
-simulator's ground truth, bad input against the exceptions it must raise, and the binding's time
-per frame against the engine's own.
+simulator's ground truth, bad input against the exceptions it must raise, and the poses of the
+same frames tracked with the machine busy against those of a quiet run (the binding's time per
+frame is a benchmark: scripts/bench-python-binding.sh).
 """
 
 import ast
+import os
 import pathlib
-import statistics
 import subprocess
-import time
+import sys
 import unittest
 
 import cv2
@@ -205,22 +206,41 @@ class TrackerFromPython(unittest.TestCase):
         self.assertTrue(issubclass(reftrack.Error, RuntimeError))
         self.assertEqual(tracker.track(frame).frame_index, 0)  # failed calls counted no frame
 
-    def test_the_binding_adds_at_most_a_tenth_of_a_millisecond_per_frame(self):
-        # Python's time around track() less the engine's own (Result.milliseconds): the binding's
-        # cost, i.e. checking and wrapping the numpy frame, releasing the GIL and the Result.
-        tracker = reftrack.Tracker.open_map(MAP)
-        overheads = []
-        for frame in frames():
-            start = time.perf_counter()
-            r = tracker.track(frame)
-            T = r.world_to_camera  # and reading the pose
-            overheads.append(1000 * (time.perf_counter() - start) - r.milliseconds)
-        median = statistics.median(overheads)
-        print(f"binding overhead per frame: median {1000 * median:.1f} us, "
-              f"min {1000 * min(overheads):.1f} us over {len(overheads)} frames")
-        self.assertIsNotNone(T)
-        self.assertLess(median, 0.1)
+    def test_the_same_frames_give_the_same_poses_while_the_machine_is_busy(self):
+        # The clip, twelve frames of noise (the search after the loss runs, then its budget holds
+        # it back), and the clip again: tracked twice, the second time with both cores busy with
+        # other processes. The search is budgeted in the modelled cost of its work (the default,
+        # realtime=False), so the poses are the same to the byte.
+        rng = np.random.default_rng(3)
+        clip = frames()
+        noise = [cv2.GaussianBlur(rng.integers(0, 256, clip[0].shape, dtype=np.uint8), (0, 0), 2)
+                 for _ in range(12)]
+        sequence = clip + noise + clip
 
+        def play():
+            tracker = reftrack.Tracker.open_map(MAP)
+            out = []
+            for frame in sequence:
+                r = tracker.track(frame)
+                out.append((r.state, r.reason, None if r.world_to_camera is None
+                            else r.world_to_camera.tobytes()))
+            return out
+
+        quiet = play()
+        burners = [subprocess.Popen([sys.executable, "-c", "while True: pass"])
+                   for _ in range(max(2, os.cpu_count() or 2))]
+        try:
+            loaded = play()
+        finally:
+            for b in burners:
+                b.kill()
+                b.wait()
+        self.assertGreaterEqual([s for s, _, _ in quiet].count("tracking"), FRAMES, quiet)
+        self.assertTrue(any("budget" in reason for _, reason, _ in quiet), quiet)  # held back
+        self.assertEqual(quiet, loaded)
+        # realtime=True (a live camera) is accepted and tracks the same clip.
+        live = reftrack.Tracker.open_map(MAP, realtime=True)
+        self.assertEqual(live.track(clip[0]).state, "tracking")
 
 if __name__ == "__main__":
     unittest.main(verbosity=2)

@@ -106,13 +106,22 @@ TEST(FrameGrabber, GlThreadSourcesAreReadOnTheCallingThread) {
 }
 
 TEST(FrameGrabber, DestructionStopsABlockedReader) {
-  // The reader blocks on a full queue of a long file source; destruction must not hang.
-  const auto start = std::chrono::steady_clock::now();
+  // The reader of a long file source blocks on the full queue: it reads no further ahead than the
+  // queue and the frame in its hand, and destruction stops it (a hang here ends in the test's
+  // timeout; nothing is timed).
+  auto source = std::make_unique<ScriptedSource>(1000000, false);
+  const ScriptedSource* raw = source.get();
+  int readAhead = 0;
   {
-    FrameGrabber grabber(std::make_unique<ScriptedSource>(1000000, false), 2);
+    FrameGrabber grabber(std::move(source), 2);
     ASSERT_EQ(grabber.next()->index, 0);
+    // Give the reader the chance to run ahead as far as it would (1 taken + 2 queued + 1).
+    for (int i = 0; i < 200 && raw->reads.load() < 4; ++i)
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    readAhead = raw->reads.load();
   }
-  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(5));
+  EXPECT_LE(readAhead, 4);
+  EXPECT_GE(readAhead, 1);
 }
 
 namespace {

@@ -171,11 +171,11 @@ TEST_F(LiveMappingTest, BuildsOnAWorkerThreadWhileTheLoopGoesOn) {
   ASSERT_TRUE(m.capture(frame(0), std::nullopt, state));
   ASSERT_TRUE(m.capture(frame(30), std::nullopt, state));
   state.buildRequested = true;
-  const auto start = std::chrono::steady_clock::now();
   m.update(frame(31), std::nullopt, state);
-  const double requestSeconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  // The request returned with the build under way: no map yet, the loop goes on (a build in
+  // the request's own thread would return with the map built and `working` false).
   EXPECT_TRUE(state.working);
+  EXPECT_FALSE(m.takeMapForTracking().has_value());
   EXPECT_EQ(state.workLabel, "building the map");
   EXPECT_NE(state.progressText.find(" of 1 pairs matched, "), std::string::npos)
       << state.progressText;
@@ -190,15 +190,9 @@ TEST_F(LiveMappingTest, BuildsOnAWorkerThreadWhileTheLoopGoesOn) {
     ++loops;
   }
   ASSERT_FALSE(state.working);
-  const double buildSeconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  EXPECT_GT(loops, 0);
+  EXPECT_GT(loops, 0);  // updates went on while the worker built the map
   EXPECT_FALSE(state.messageIsError) << state.message;
   EXPECT_TRUE(m.takeMapForTracking().has_value());
-  // The request returned long before the build finished (measured on the shared 2-core machine
-  // under load: 0.49 s of a ~4 s build; the build itself runs in the request's thread when not in
-  // the background, so the ratio would be ~1).
-  EXPECT_LT(requestSeconds, 0.25 * buildSeconds) << requestSeconds << " of " << buildSeconds;
 }
 
 // Unprepared (no marker): the first capture, a view turned on the spot refused with the motion

@@ -14,15 +14,18 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <memory>
 #include <numeric>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 #include <optional>
 #include <random>
 #include <string>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -146,10 +149,12 @@ TEST_F(MultiReferenceTrackerRealFootage, TheFirstFrameGetsAPose) {
   EXPECT_LT(clip_->cubeError(0, *r.tracking.worldToCamera), 0.5);
 }
 
-// The whole clip in order with the default parameters, against issue 24's bounds: >= 99.5% of the
-// frames tracked from frame 0, cube error p95 <= 0.9 px and max below 1.5 px, mean <= 0.35 px.
-// Measured (learned reliability on): mean 0.344, p95 0.769, max 1.20 px (0.367 / 0.807 / 1.33
-// without it). The mean is held to 0.36: 0.01 of room for other CPUs' SIMD float paths.
+// The whole clip in order with the default parameters, against issue 24's bounds: every frame
+// tracked from frame 0 (frames 174 and 389, unsure by the check of every pose and placed a few
+// pixels elsewhere by the relocaliser's second opinion, were lost while that opinion was held to
+// the PnP threshold), cube error p95 <= 0.9 px and max below 1.5 px, mean <= 0.35 px. Measured
+// (learned reliability on): mean 0.344, p95 0.770, max 1.20 px (0.367 / 0.807 / 1.33 without
+// it). The mean is held to 0.36: 0.01 of room for other CPUs' SIMD float paths.
 TEST_F(MultiReferenceTrackerRealFootage, TracksTheWholeClipWithinTheBounds) {
   MultiReferenceTracker tracker(clip_->map, TrackerParams{});
   std::vector<double> errors;
@@ -158,7 +163,7 @@ TEST_F(MultiReferenceTrackerRealFootage, TracksTheWholeClipWithinTheBounds) {
     if (r.tracking.state == TrackingState::Tracking)
       errors.push_back(clip_->cubeError(i, *r.tracking.worldToCamera));
   }
-  EXPECT_GE(static_cast<double>(errors.size()), 0.995 * static_cast<double>(clip_->frames.size()));
+  EXPECT_EQ(errors.size(), clip_->frames.size());
   double mean = 0.0;
   for (double e : errors) mean += e;
   mean /= static_cast<double>(errors.size());
@@ -211,6 +216,86 @@ TEST_F(MultiReferenceTrackerRealFootage, ColdStartsGiveNoWrongPose) {
         << "frame " << i << ": " << r.tracking.message;
   }
   EXPECT_GE(posed, frames * 9 / 10);
+}
+
+// Other threads busy on every core until destroyed: the machine's load, inside this process
+// (whose CPU time a budget charged in measured time would count).
+class CpuBurners {
+ public:
+  CpuBurners() {
+    const unsigned n = std::max(2u, std::thread::hardware_concurrency());
+    for (unsigned i = 0; i < n; ++i)
+      threads_.emplace_back([this, i] {
+        double x = 1.0 + i;
+        while (!stop_.load(std::memory_order_relaxed))
+          for (int k = 0; k < 10000; ++k) x = x * 1.0000001 + 1e-9;
+        sink_.fetch_add(x > 0.0 ? 1 : 0);
+      });
+  }
+  ~CpuBurners() {
+    stop_ = true;
+    for (std::thread& t : threads_) t.join();
+  }
+
+ private:
+  std::atomic<bool> stop_{false};
+  std::atomic<int> sink_{0};
+  std::vector<std::thread> threads_;
+};
+
+// Recorded input gives the same poses on any machine load: 60 frames — 25 in order, 12 of an
+// unrelated scene (a random texture: the recovery searches, then the budget holds it back), then
+// a cut to frames 300-322, found again by the relocaliser — played twice, the second time with
+// every core busy with other threads of this process. The states and the poses' bytes are equal.
+// (With the budget charged in measured process CPU time, the burning threads emptied it and the
+// second run searched fewer frames.)
+TEST_F(MultiReferenceTrackerRealFootage, TheSameFramesGiveTheSameTrajectoryUnderLoad) {
+  std::vector<cv::Mat> frames;
+  for (int i = 0; i < 25; ++i) frames.push_back(clip_->frames[static_cast<std::size_t>(i)]);
+  cv::RNG rng(7);
+  for (int i = 0; i < 12; ++i) {
+    cv::Mat texture(clip_->frames[0].size(), CV_8UC1);
+    rng.fill(texture, cv::RNG::UNIFORM, 0, 256);
+    cv::GaussianBlur(texture, texture, cv::Size(0, 0), 2.0);
+    frames.push_back(texture);
+  }
+  for (int i = 300; i < 323; ++i) frames.push_back(clip_->frames[static_cast<std::size_t>(i)]);
+  struct Run {
+    std::string bytes;  // per frame: the state and the pose's 4x4 doubles, as stored
+    int searched = 0, heldBack = 0, relocalised = 0;
+  };
+  const auto play = [&] {
+    Run run;
+    MultiReferenceTracker tracker(clip_->map, TrackerParams{});
+    for (const cv::Mat& frame : frames) {
+      const MultiReferenceResult r = tracker.process(frame);
+      run.bytes += toString(r.tracking.state);
+      if (r.tracking.worldToCamera) {
+        const Eigen::Matrix4d T = r.tracking.worldToCamera->matrix4();
+        run.bytes.append(reinterpret_cast<const char*>(T.data()), sizeof(double) * 16);
+      }
+      run.searched += r.recovery.ran ? 1 : 0;
+      run.heldBack += r.tracking.message.find("budget") != std::string::npos ? 1 : 0;
+      run.relocalised += r.relocalisation.succeeded ? 1 : 0;
+    }
+    return run;
+  };
+  const Run quiet = play();
+  Run loaded;
+  {
+    const CpuBurners burners;
+    loaded = play();
+  }
+  // The run is one that exercises the budget: searches, frames held back, a relocalisation.
+  EXPECT_GE(quiet.searched, 3);
+  EXPECT_GE(quiet.heldBack, 1);
+  EXPECT_GE(quiet.relocalised, 1);
+  EXPECT_EQ(loaded.searched, quiet.searched);
+  EXPECT_EQ(loaded.heldBack, quiet.heldBack);
+  EXPECT_TRUE(loaded.bytes == quiet.bytes) << "the trajectories differ under load";
+  RecordProperty("searched_held_back_relocalised", std::to_string(quiet.searched) + " " +
+                                                       std::to_string(quiet.heldBack) + " " +
+                                                       std::to_string(quiet.relocalised));
 }
 
 // References 200 and 240: cold starts near them on frames 330-338 once gave poses two chessboard
