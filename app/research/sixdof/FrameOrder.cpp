@@ -52,24 +52,24 @@ const std::vector<std::string>& defaultFrameOrders() {
 }
 
 FrameOrder parseFrameOrder(const std::string& text) {
-  if (text == "sequence") return {text, FrameOrderKind::Sequence, 0};
-  if (text == "shuffled") return {text, FrameOrderKind::Shuffled, 0};
-  if (text == "shuffled-sequence") return {text, FrameOrderKind::ShuffledSequence, 0};
+  if (text == "sequence") return {text, FrameOrderKind::Sequence, 0, {}};
+  if (text == "shuffled") return {text, FrameOrderKind::Shuffled, 0, {}};
+  if (text == "shuffled-sequence") return {text, FrameOrderKind::ShuffledSequence, 0, {}};
   const std::string bad = "bench-real: --order: '" + text + "': ";
   if (text.rfind("cuts:", 0) == 0) {
     const int n = countAfter(text, 5);
     if (n < 2) throw Error(bad + "N (the segments) must be a whole number >= 2");
-    return {"cuts:" + std::to_string(n), FrameOrderKind::Cuts, n};
+    return {"cuts:" + std::to_string(n), FrameOrderKind::Cuts, n, {}};
   }
   if (text.rfind("stride:", 0) == 0) {
     const int k = countAfter(text, 7);
     if (k < 1) throw Error(bad + "K (the stride) must be a whole number >= 1");
-    return {"stride:" + std::to_string(k), FrameOrderKind::Stride, k};
+    return {"stride:" + std::to_string(k), FrameOrderKind::Stride, k, {}};
   }
   if (text.rfind("away:", 0) == 0) {
     const int n = countAfter(text, 5);
     if (n < 1) throw Error(bad + "N (the frames of the other scene) must be a whole number >= 1");
-    return {"away:" + std::to_string(n), FrameOrderKind::Away, n};
+    return {"away:" + std::to_string(n), FrameOrderKind::Away, n, {}};
   }
   if (text.rfind("return:", 0) == 0) {
     const std::vector<FrameRange> ranges = rangesAfter(text, 7);
@@ -78,9 +78,12 @@ FrameOrder parseFrameOrder(const std::string& text) {
                   "needs two or more ranges of frames A-B joined by '+' (the start, ..., the "
                   "return), e.g. return:0-70+110-150+70-0");
     std::string name = "return:";
-    for (std::size_t i = 0; i < ranges.size(); ++i)
-      name +=
-          (i ? "+" : "") + std::to_string(ranges[i].first) + "-" + std::to_string(ranges[i].last);
+    for (std::size_t i = 0; i < ranges.size(); ++i) {
+      if (i > 0) name += '+';
+      name += std::to_string(ranges[i].first);
+      name += '-';
+      name += std::to_string(ranges[i].last);
+    }
     return {name, FrameOrderKind::Return, static_cast<int>(ranges.size()), ranges};
   }
   throw Error("bench-real: --order: unknown order '" + text + "' (known: " + kKnownOrders + ")");
