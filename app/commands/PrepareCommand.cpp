@@ -184,9 +184,9 @@ void printSummary(const MultiPreparation& p, const std::vector<std::string>& nam
               kept > 0 ? std::sqrt(sq / kept) : 0.0, kept);
   if (r.pointsBeforeDenserCorners >= 0)
     std::printf(
-        "the references' corners gave %d map points (fewer than preparation.target_points): "
-        "with denser corners %d; kept the %s\n",
-        r.pointsBeforeDenserCorners,
+        "the references' corners gave %d map points (fewer than preparation.target_points, "
+        "corners repeating %.2f): with denser corners %d; kept the %s\n",
+        r.pointsBeforeDenserCorners, r.cornerRepeat,
         r.denserCorners ? static_cast<int>(p.map.points.size()) : r.denserCornersGave,
         r.denserCorners ? "denser corners' map" : "first map");
   std::printf("map points: %zu; seen by", p.map.points.size());

@@ -32,7 +32,7 @@ TrackingResult HomographyFrameTracker::process(const cv::Mat& frame, int, double
   TrackingResult r;
   r.status = last_.tracked ? "tracking" : "lost";
   if (!last_.tracked && !last_.failure.empty()) r.status += ": " + last_.failure;
-  advice_.add(last_);
+  advice_.add(last_, tracker_->referenceSize(), frame.size());
   r.advice = advice_.advice().value_or("");
   for (const auto& [stage, ms] : last_.stageMs) r.stages.push_back({stage, ms});
   r.matches = last_.matches;

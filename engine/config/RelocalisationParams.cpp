@@ -63,8 +63,8 @@ void RelocalisationParams::fields(Self& p, const Field& field) {
       .help("While lost, try on every n-th frame only (saves time)");
   field("budget_ms_per_frame", p.budgetMsPerFrame, Range{0.0, 1e6})
       .help(
-          "While lost, the search spends at most this much per frame on average (ms of modelled "
-          "work on recorded input, of CPU live; 3 ms is 9% of a core at 30 fps)");
+          "While lost, the search's average ms per frame (modelled work on recorded input, CPU "
+          "live)");
   field("budget_burst_ms", p.budgetBurstMs, Range{0.0, 1e9})
       .help(
           "... after a burst of this much (ms), refilled when tracking: the first searches come at "

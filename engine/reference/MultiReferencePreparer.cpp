@@ -338,12 +338,19 @@ MultiPreparation MultiReferencePreparer::build(const std::vector<ReferenceImage>
       throw Error("the pose of reference image '" + images[static_cast<std::size_t>(v)].name +
                   "' (" + poseSource + ") is not finite");
 
-  // The references' own corners first; a map short of preparation.target_points is made again
-  // from denser corners (soft images repeat few of the strongest Harris corners between views),
-  // and the map with more points is kept.
+  // The references' own corners first; a map short of preparation.target_points whose corners
+  // repeat poorly (soft images repeat few of the strongest Harris corners between views) is made
+  // again from denser corners, and the map with more points is kept.
   MultiPreparation out =
       matchAndMerge(images, poses, poseSource, report, progress, params_.corners, false);
-  if (static_cast<int>(out.map.points.size()) < params_.targetPoints) {
+  double repeat = 0.0;  // the best pair's kept matches over the fewer corners of its images
+  for (const ReferencePairReport& pr : out.report.pairs)
+    if (pr.matched && std::min(pr.matching.cornersA, pr.matching.cornersB) > 0)
+      repeat = std::max(repeat, static_cast<double>(pr.matching.kept) /
+                                    std::min(pr.matching.cornersA, pr.matching.cornersB));
+  out.report.cornerRepeat = repeat;
+  if (static_cast<int>(out.map.points.size()) < params_.targetPoints &&
+      repeat <= params_.denserCornerMaxRepeat) {
     MultiPreparation denser =
         matchAndMerge(images, poses, poseSource, report, progress, params_.denserCorners(), true);
     denser.report.pointsBeforeDenserCorners = static_cast<int>(out.map.points.size());

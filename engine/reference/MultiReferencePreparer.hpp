@@ -10,8 +10,9 @@
 // seen by 3+ is re-triangulated from all its measurements (its first reference's corner and the
 // correlation peaks the pairs found for it elsewhere; linear DLT, then Gauss-Newton on the
 // reprojection errors with Ceres) and loses, worst first, every observation reprojecting farther
-// than maxTrackReprojectionErrorPx. A map of fewer than targetPoints points is made again from
-// denser corners (ReferencePreparerParams::denserCorners) and the one with more points kept. Last,
+// than maxTrackReprojectionErrorPx. A map of fewer than targetPoints points whose corners repeat
+// poorly (denserCornerMaxRepeat) is made again from denser corners
+// (ReferencePreparerParams::denserCorners) and the one with more points kept. Last,
 // the keypoint layer for relocalisation is built (buildReferenceKeypoints with
 // params.relocalisation, unless disabled there). Bad input throws reftrack::Error naming the image
 // or pair.
@@ -53,6 +54,8 @@ struct MultiPreparationReport {
   bool denserCorners = false;
   int pointsBeforeDenserCorners = -1;
   int denserCornersGave = -1;
+  // The first map's best pair: kept matches over the fewer corners of its two images.
+  double cornerRepeat = 0.0;
 };
 
 // A reference's pose measured in its own image from a fiducial in view (a marker, a calibration

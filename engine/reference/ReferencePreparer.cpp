@@ -70,6 +70,7 @@ void ReferencePreparerParams::check() const {
   requireFiniteInRange("preparation.max_track_reprojection_error_px", maxTrackReprojectionErrorPx,
                        1e-3, 1e3);
   requireIntInRange("preparation.target_points", targetPoints, 0, 10000000);
+  requireFiniteInRange("preparation.denser_corner_max_repeat", denserCornerMaxRepeat, 0.0, 1.0);
   requireIntInRange("preparation.denser_corner_count", denserCornerCount, 1, 1000000);
   requireFiniteInRange("preparation.denser_corner_quality", denserCornerQuality, 1e-9, 1.0);
   requireFiniteInRange("preparation.denser_corner_min_distance_px", denserCornerMinDistancePx, 0.0,
@@ -96,9 +97,10 @@ void ReferencePreparerParams::write(cv::FileStorage& fs) const {
      << "min_baseline_m" << minBaselineMetres << "min_matches" << minMatches
      << "max_pair_view_angle_deg" << maxPairViewAngleDeg << "min_pair_matches" << minPairMatches
      << "max_track_reprojection_error_px" << maxTrackReprojectionErrorPx << "target_points"
-     << targetPoints << "denser_corner_count" << denserCornerCount << "denser_corner_quality"
-     << denserCornerQuality << "denser_corner_min_distance_px" << denserCornerMinDistancePx
-     << "refine_poses" << (refinePoses ? "true" : "false") << "refine_given_poses"
+     << targetPoints << "denser_corner_max_repeat" << denserCornerMaxRepeat << "denser_corner_count"
+     << denserCornerCount << "denser_corner_quality" << denserCornerQuality
+     << "denser_corner_min_distance_px" << denserCornerMinDistancePx << "refine_poses"
+     << (refinePoses ? "true" : "false") << "refine_given_poses"
      << (refineGivenPoses ? "true" : "false") << "pose_prior_origin_sd_px"
      << poseRefinement.originSdPx << "pose_prior_translation_sd_m"
      << poseRefinement.translationSdMetres << "pose_prior_rotation_sd_deg"
@@ -127,6 +129,7 @@ void ReferencePreparerParams::read(const YamlNode& root,
   readConfigValue(root["preparation"], "max_track_reprojection_error_px",
                   maxTrackReprojectionErrorPx);
   readConfigValue(root["preparation"], "target_points", targetPoints);
+  readConfigValue(root["preparation"], "denser_corner_max_repeat", denserCornerMaxRepeat);
   readConfigValue(root["preparation"], "denser_corner_count", denserCornerCount);
   readConfigValue(root["preparation"], "denser_corner_quality", denserCornerQuality);
   readConfigValue(root["preparation"], "denser_corner_min_distance_px", denserCornerMinDistancePx);

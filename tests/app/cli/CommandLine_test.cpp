@@ -21,8 +21,9 @@ TEST(CommandLine, RegistersProductCommandsBeforeResearchCommands) {
     }
     EXPECT_FALSE(researchSeen && c.group == CommandGroup::Product) << "product after research";
   }
-  // experiment-6dof/-correlation/-relocalisation/-homography, bench-homography/-real, corner
-  EXPECT_EQ(research, 7);
+  // experiment-6dof/-correlation/-relocalisation/-homography/-reference-pair,
+  // bench-homography/-real/-recovery-cost, corner-variance
+  EXPECT_EQ(research, 9);
 }
 
 // `reftrack --help` shows the two groups under their headings, each command once.
