@@ -32,7 +32,7 @@ run() {  # NAME FRAMES CAMERA
     --camera "$3" --out "$work/map_$1" >"$work/prepare_$1.log"
   echo "== $1"
   "$reftrack" track --input "$2" --map "$work/map_$1" --out-csv "$work/track_$1.csv" \
-    --cold-starts "${@:4}" | grep -E '^(6dof|relocalisation):'
+    --cold-starts "${@:4}" | grep -E '^(6dof|relocalisation|recovery)'
 }
 run 640x480 "$work/crop" "$work/camera640.yml" "$@"
 run 752x480 "$clip/frames" "$clip/camera.yml" "$@"

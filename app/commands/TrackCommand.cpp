@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <opencv2/core/utility.hpp>
 
 #include "app/commands/Commands.hpp"
 #include "app/tracking/HomographyTrack.hpp"
@@ -25,6 +26,7 @@ struct TrackArgs {
   double cubeEdge = 0.0;       // 0: from the scene
   bool coldStarts = false;
   bool debugOverlay = false;
+  int threads = -1;  // OpenCV's worker threads; -1: its default
   bool realtime = false;
 };
 
@@ -101,6 +103,10 @@ CommandRegistration registerTrackCommand(CLI::App& parent) {
                 "6dof: forget the past before every frame, so each frame is a cold start (the "
                 "start near a reference, then relocalisation): measures starts, never needed to "
                 "track");
+  sub->add_option("--threads", args->threads,
+                  "OpenCV's worker threads (default: OpenCV's choice; 1: everything on the "
+                  "calling thread, so thread CPU times are the whole cost on one core)")
+      ->check(CLI::Range(1, 1024));
   sub->add_option("--cube-at", args->cubeAt,
                   "6dof: x,y,z of the recorded cube's base centre (world, metres; upright in the "
                   "world frame; default: on the map's dominant plane near its middle)")
@@ -126,6 +132,7 @@ CommandRegistration registerTrackCommand(CLI::App& parent) {
     }
   });
   return {sub, [args] {
+            if (args->threads > 0) cv::setNumThreads(args->threads);
             if (chooseMode(*args) == TrackingMode::SixDof) {
               SixDofTrackOptions o;
               o.map = args->map;

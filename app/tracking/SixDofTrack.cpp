@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <iomanip>
+#include <map>
 #include <sstream>
 
 #include "app/cli/Interruption.hpp"
@@ -117,7 +118,9 @@ int runSixDofTrack(const SixDofTrackOptions& o) {
   std::vector<double> predicted;                       // of the tracked frames
   double readout = params.pose.rollingShutterReadout;  // the last tracked frame's
   std::pair<int, int> lastPair{-1, -1};
-  std::vector<double> ms, relocMs, locateCpuMs;
+  std::vector<double> ms, relocMs, locateCpuMs, relocCpuMs;
+  // What stopped each way back (RecoveryStage), counted per attempt.
+  std::map<std::string, int> startStops, relocStops;
   const InterruptibleWork interruptible;  // Ctrl-C ends the loop; the outputs are then finished
   while (!interruptRequested()) {
     const std::optional<Frame> frame = input.next();
@@ -141,7 +144,10 @@ int runSixDofTrack(const SixDofTrackOptions& o) {
       relocSucceeded += multi.relocalisation.succeeded ? 1 : 0;
       relocMs.push_back(multi.relocalisation.ms);
       locateCpuMs.push_back(multi.relocalisation.locateCpuMs);
+      relocCpuMs.push_back(multi.relocalisation.cpuMs);
+      ++relocStops[toString(multi.relocalisation.stop)];
     }
+    if (multi.start != RecoveryStage::None) ++startStops[toString(multi.start)];
     // Issue 32: a pose whose predicted overlay error exceeds pose.max_predicted_error_px.
     const char* status = multi.uncertain ? "uncertain" : toString(r.state);
     uncertain += multi.uncertain ? 1 : 0;
@@ -227,7 +233,22 @@ int runSixDofTrack(const SixDofTrackOptions& o) {
         realTimeBudget ? "CPU (measured: a live source or --realtime)"
                        : "of modelled work (the same every run; --realtime: measured CPU)",
         params.relocalisation.budgetMsPerFrame, params.relocalisation.budgetBurstMs);
+    std::printf(
+        "relocalisation CPU of this thread (the whole cost with --threads 1): median %.1f ms per "
+        "attempt with its verification\n",
+        median(relocCpuMs));
   }
+  const auto breakdown = [](const std::map<std::string, int>& stops) {
+    std::string text;
+    for (const auto& [stage, n] : stops)
+      text += (text.empty() ? "" : ", ") + stage + " " + std::to_string(n);
+    return text;
+  };
+  if (!startStops.empty())
+    std::printf("recovery while not tracking, per frame, the start near a reference: %s\n",
+                breakdown(startStops).c_str());
+  if (!relocStops.empty())
+    std::printf("relocalisation attempts, what stopped each: %s\n", breakdown(relocStops).c_str());
   if (!o.trajectory.empty()) std::printf("trajectory: %s\n", o.trajectory.string().c_str());
   if (!o.csv.empty()) std::printf("per-frame CSV: %s\n", o.csv.string().c_str());
   if (recorder) std::printf("recording: %s\n", o.record.string().c_str());

@@ -419,6 +419,7 @@ RelocalisationAttempt Relocaliser::Impl::locate(const cv::Mat& frame, double sca
   if (static_cast<int>(keypoints.size()) < params.minInliers) {
     out.message = "too few keypoints (" + std::to_string(keypoints.size()) +
                   "): black, textureless or blurred frame";
+    out.stop = RecoveryStage::TooFewKeypoints;
     out.work = work;
     return out;
   }
@@ -494,6 +495,7 @@ RelocalisationAttempt Relocaliser::Impl::locateWith(const cv::Mat& frame,
   if (matches < params.minInliers) {
     out.message = "too few matches with the map (" + std::to_string(matches) + " < " +
                   std::to_string(params.minInliers) + ")";
+    out.stop = RecoveryStage::TooFewMatches;
     return out;
   }
 
@@ -512,6 +514,7 @@ RelocalisationAttempt Relocaliser::Impl::locateWith(const cv::Mat& frame,
     out.message = "PnP-RANSAC found no pose with " + std::to_string(params.minInliers) +
                   " inliers (" + std::to_string(ransacInliers.size()) + " of " +
                   std::to_string(matches) + " matches)";
+    out.stop = RecoveryStage::PnpInliers;
     return out;
   }
   // solvePnPRansac re-estimates the pose from the best sample's inliers with EPnP (after AP3P
@@ -689,6 +692,9 @@ RelocalisationAttempt Relocaliser::Impl::locateWith(const cv::Mat& frame,
       std::to_string(support.covered) + " grid cells" + spreadText + zoomText;
   if (!firstStage || !support.enough) {
     out.message = "not enough support (" + supportText + ")";
+    out.stop = firstInliers < params.minInliers || n < params.minInliers ? RecoveryStage::PnpInliers
+               : !firstStage ? RecoveryStage::InlierShare
+                             : RecoveryStage::InlierSpread;
     return out;
   }
   RelocalisationCandidate c;

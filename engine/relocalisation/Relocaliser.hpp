@@ -14,6 +14,7 @@
 #include "engine/config/RelocalisationParams.hpp"
 #include "engine/geometry/RigidPose.hpp"
 #include "engine/reference/MultiReferenceMap.hpp"
+#include "engine/relocalisation/RecoveryStage.hpp"
 #include "engine/relocalisation/RecoveryWork.hpp"
 #include "engine/relocalisation/ReferenceKeypointBuilder.hpp"  // buildReferenceKeypoints
 
@@ -41,7 +42,9 @@ struct KeypointSupport {
 struct RelocalisationAttempt {
   std::optional<RelocalisationCandidate> candidate;  // nullopt: no pose with enough support
   std::string message;                               // why not, or what was found
-  double ms = 0.0;                                   // wall time of locate()
+  // The search stage that stopped it (TooFewKeypoints .. InlierSpread); None with a candidate.
+  RecoveryStage stop = RecoveryStage::None;
+  double ms = 0.0;     // wall time of locate()
   double cpuMs = 0.0;  // the process's CPU time of locate() (OpenCV's worker threads included)
   KeypointWork work;   // what locate() did, counted: the same for the same frame on any machine
 };

@@ -81,6 +81,7 @@ struct MultiReferenceTracker::Impl {
   std::vector<ReferencePair> initialisationPairs;  // the paper's start near a reference
   std::size_t nextInitialisationPair = 0;
   int relocalisationAttempts = 0;
+  RecoveryStage startStage = RecoveryStage::None;  // this frame's start near a reference
   // Built when relocalisation is enabled and the map has a keypoint layer; else the paper's start
   // near a reference is the only way in.
   std::unique_ptr<Relocaliser> relocaliser;
@@ -300,8 +301,9 @@ struct MultiReferenceTracker::Impl {
   PoseTrackingResult startNearReference(const cv::Mat& frame, ReferencePair& used);
   PoseTrackingResult relocalise(const cv::Mat& frame, ReferencePair& used,
                                 RelocalisationReport& relocalisation);
-  bool verified(PoseTrackingResult& r, const cv::Mat& frame,
-                const RelocalisationCandidate* candidate = nullptr);
+  // Verified, or the rule that refused it (SeededPass when r is not tracking).
+  RecoveryStage verify(PoseTrackingResult& r, const cv::Mat& frame,
+                       const RelocalisationCandidate* candidate = nullptr);
 };
 
 MultiReferenceResult MultiReferenceTracker::Impl::process(const cv::Mat& frame) {
@@ -314,6 +316,7 @@ MultiReferenceResult MultiReferenceTracker::Impl::process(const cv::Mat& frame) 
                 std::to_string(map.camera.imageSize().height));
   ++frameCount;
   locatedThisFrame.reset();
+  startStage = RecoveryStage::None;
   FrameAttempts attempts;
   ReferencePair used;
   MultiReferenceResult out;
@@ -339,6 +342,7 @@ MultiReferenceResult MultiReferenceTracker::Impl::process(const cv::Mat& frame) 
   }
   out.referenceA = used.a;
   out.referenceB = used.b;
+  out.start = startStage;
   if (std::exchange(noticePending, false)) out.notice = relocalisationOff;
   if (!attempts.earlierMessages.empty() && out.tracking.state != TrackingState::Tracking)
     out.tracking.message = attempts.earlierMessages + "; " + out.tracking.message;
@@ -405,6 +409,7 @@ PoseTrackingResult MultiReferenceTracker::Impl::recover(const cv::Mat& frame,
     r.message =
         "not searched: the time budget of the recovery is spent for now "
         "(relocalisation.budget_ms_per_frame, budget_burst_ms)";
+    startStage = RecoveryStage::NotSearched;
     return r;
   }
   // A blank frame (a covered lens, black) has nothing to find and costs nothing: so a covered
@@ -413,6 +418,7 @@ PoseTrackingResult MultiReferenceTracker::Impl::recover(const cv::Mat& frame,
     PoseTrackingResult r;
     r.state = TrackingState::Lost;  // as the start near a reference reports a black frame
     r.message = "blank frame (black, covered or uniform): nothing to search";
+    startStage = RecoveryStage::BlankFrame;
     return r;
   }
   // Charged on every way out: the modelled cost of the work counted from here on, or the budget
@@ -475,6 +481,7 @@ PoseTrackingResult MultiReferenceTracker::Impl::startNearReference(const cv::Mat
   used = pair;
   if (r.state != TrackingState::Tracking) {
     t.reset();
+    startStage = RecoveryStage::StartNoPose;
     return r;
   }
   // Confirmation on the same frame: the start's pose seeds the wide-baseline matching of every
@@ -484,7 +491,8 @@ PoseTrackingResult MultiReferenceTracker::Impl::startNearReference(const cv::Mat
   t.seed(*r.worldToCamera);
   PoseTrackingResult confirmed = recoveryPass(t, frame, true);
   confirmed.timings.insert(confirmed.timings.begin(), {"start", startMs});
-  if (!verified(confirmed, frame)) {
+  startStage = verify(confirmed, frame);
+  if (startStage != RecoveryStage::Verified) {
     t.reset();
     confirmed.message = "start near references not confirmed: " + confirmed.message;
     return confirmed;
@@ -502,15 +510,17 @@ PoseTrackingResult MultiReferenceTracker::Impl::startNearReference(const cv::Mat
 // keeps minInliers of its own ratio-test inliers is verified by them alone (views of mostly
 // repeated texture have few distinctive corners). The figures: RelocalisationParams. Otherwise r
 // is made Lost with the reason.
-bool MultiReferenceTracker::Impl::verified(PoseTrackingResult& r, const cv::Mat& frame,
-                                           const RelocalisationCandidate* candidate) {
-  if (r.state != TrackingState::Tracking || !r.worldToCamera) return false;
+RecoveryStage MultiReferenceTracker::Impl::verify(PoseTrackingResult& r, const cv::Mat& frame,
+                                                  const RelocalisationCandidate* candidate) {
+  if (r.state != TrackingState::Tracking || !r.worldToCamera)
+    return r.verificationFailed ? RecoveryStage::Correlation : RecoveryStage::SeededPass;
   const RelocalisationParams& p = params.relocalisation;
   const int kept = candidate ? relocaliser->agreeing(*r.worldToCamera, candidate->distinctivePoints,
                                                      candidate->distinctivePixels)
                              : -1;
-  if (kept >= p.minInliers) return true;
+  if (kept >= p.minInliers) return RecoveryStage::Verified;
   std::string why;
+  RecoveryStage stage = RecoveryStage::DistinctiveCorners;
   if (r.distinctiveInliers < p.minDistinctiveInliers) {
     why = std::to_string(r.distinctiveInliers) +
           " inlier matches to distinctive reference corners, " +
@@ -531,7 +541,9 @@ bool MultiReferenceTracker::Impl::verified(PoseTrackingResult& r, const cv::Mat&
     }
     const double share =
         support.matches > 0 ? static_cast<double>(support.agreeing) / support.matches : 0.0;
-    if (support.agreeing >= p.minKeypointSupport && share >= p.minKeypointAgreement) return true;
+    if (support.agreeing >= p.minKeypointSupport && share >= p.minKeypointAgreement)
+      return RecoveryStage::Verified;
+    stage = RecoveryStage::KeypointSupport;
     char text[160];
     std::snprintf(
         text, sizeof text,
@@ -541,13 +553,13 @@ bool MultiReferenceTracker::Impl::verified(PoseTrackingResult& r, const cv::Mat&
         100.0 * p.minKeypointAgreement);
     why = text;
   } else {
-    return true;
+    return RecoveryStage::Verified;
   }
   r.state = TrackingState::Lost;
   r.worldToCamera.reset();
   r.T_Ak.reset();
   r.message = "not verified: " + why + ": on repeated texture the pose could be a whole period off";
-  return false;
+  return stage;
 }
 
 // The Relocaliser's candidate, refined and verified by the pair best placed for it.
@@ -561,6 +573,7 @@ PoseTrackingResult MultiReferenceTracker::Impl::relocalise(const cv::Mat& frame,
   relocalisation.attempted = true;
   relocalisation.locateMs = attempt.ms;
   relocalisation.locateCpuMs = attempt.cpuMs;
+  relocalisation.stop = attempt.stop;
   relocalisation.message = attempt.message;
   if (attempt.candidate) {
     relocalisation.inliers = attempt.candidate->inliers;
@@ -574,7 +587,8 @@ PoseTrackingResult MultiReferenceTracker::Impl::relocalise(const cv::Mat& frame,
     relocalisation.ms = msSince(start);
     relocalisation.cpuMs = threadCpuMs() - cpuStart;
     r.timings.insert(r.timings.begin(), {"relocalise", attempt.ms});
-    if (verified(r, frame, &*attempt.candidate)) {
+    relocalisation.stop = verify(r, frame, &*attempt.candidate);
+    if (relocalisation.stop == RecoveryStage::Verified) {
       relocalisation.succeeded = true;
       relocalisation.message +=
           "; verified by references " + std::to_string(pair.a) + "+" + std::to_string(pair.b);

@@ -22,6 +22,7 @@
 #include "engine/estimation/CornerVarianceModel.hpp"
 #include "engine/estimation/MotionModel.hpp"
 #include "engine/reference/MultiReferenceMap.hpp"
+#include "engine/relocalisation/RecoveryStage.hpp"
 #include "engine/relocalisation/RecoveryWork.hpp"
 #include "engine/tracking/PoseTracker.hpp"
 
@@ -34,6 +35,9 @@ struct RelocalisationReport {
   double cpuMs = 0.0;      // ... the thread's CPU time of it
   double locateMs = 0.0, locateCpuMs = 0.0;  // Relocaliser::locate alone (no verification)
   int inliers = 0;                           // PnP inliers of the candidate
+  // What stopped the attempt (the relocaliser's search stage, the seeded pass, the check by
+  // correlation, a start rule) or Verified; None when there was no attempt.
+  RecoveryStage stop = RecoveryStage::None;
   std::string message;
 };
 
@@ -51,6 +55,10 @@ struct MultiReferenceResult {
   PoseTrackingResult tracking;           // T_Ak etc. relative to reference `referenceA`
   int referenceA = -1, referenceB = -1;  // the pair whose tracker gave `tracking` (-1: none)
   RelocalisationReport relocalisation;
+  // The start near a reference on this frame: what stopped it (StartNoPose, SeededPass,
+  // Correlation, DistinctiveCorners, KeypointSupport) or Verified; NotSearched or BlankFrame when
+  // the recovery tried nothing on the frame; None when tracking needed no start.
+  RecoveryStage start = RecoveryStage::None;
   RecoveryReport recovery;
   // Said once, with the first frame after construction or a parameter change: why the tracker
   // runs without relocalisation when it was asked for (a map with a thin or no keypoint layer).

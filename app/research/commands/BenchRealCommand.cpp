@@ -204,7 +204,10 @@ CommandRegistration registerBenchRealCommand(CLI::App& parent) {
              "each cut), stride:K (frames 0, K, 2K, ... in order; only those scored), away:N "
              "(--input only: in order, N frames of --away-input after the first half: poses "
              "there are wrong; the CPU spent there and the frames to re-acquire after the "
-             "return)")
+             "return), return:A-B+C-D+... (ranges of the clip's own frames played one after "
+             "the other as one sequence, backwards when B < A, frames may repeat: the start, "
+             "away, the return; every play scored; per range the plays to re-acquire; a suite "
+             "clip may name its own orders)")
           ->delimiter(',')
           ->capture_default_str();
   CLI::Option* methods =

@@ -12,17 +12,36 @@ namespace reftrack::app {
 
 namespace {
 
-const char* const kKnownOrders = "sequence, shuffled, shuffled-sequence, cuts:N, stride:K, away:N";
+const char* const kKnownOrders =
+    "sequence, shuffled, shuffled-sequence, cuts:N, stride:K, away:N, return:A-B+C-D+...";
 
 // The whole number after "cuts:" / "stride:" / "away:", or -1 when the rest is not one.
-int countAfter(const std::string& text, std::size_t prefix) {
-  const char* begin = text.data() + prefix;
-  const char* end = text.data() + text.size();
+int wholeNumber(const char* begin, const char* end) {
   if (begin == end || !std::all_of(begin, end, [](char c) { return c >= '0' && c <= '9'; }))
     return -1;
   int value = 0;
   const auto [last, ec] = std::from_chars(begin, end, value);
   return ec == std::errc() && last == end ? value : -1;
+}
+int countAfter(const std::string& text, std::size_t prefix) {
+  return wholeNumber(text.data() + prefix, text.data() + text.size());
+}
+
+// "A-B+C-D+..." after "return:", or an empty list when it is not that.
+std::vector<FrameRange> rangesAfter(const std::string& text, std::size_t prefix) {
+  std::vector<FrameRange> ranges;
+  std::size_t at = prefix;
+  while (at <= text.size()) {
+    const std::size_t plus = std::min(text.find('+', at), text.size());
+    const std::size_t dash = text.find('-', at);
+    if (dash == std::string::npos || dash >= plus) return {};
+    const int a = wholeNumber(text.data() + at, text.data() + dash);
+    const int b = wholeNumber(text.data() + dash + 1, text.data() + plus);
+    if (a < 0 || b < 0) return {};
+    ranges.push_back({a, b});
+    at = plus + 1;
+  }
+  return ranges;
 }
 
 }  // namespace
@@ -33,24 +52,39 @@ const std::vector<std::string>& defaultFrameOrders() {
 }
 
 FrameOrder parseFrameOrder(const std::string& text) {
-  if (text == "sequence") return {text, FrameOrderKind::Sequence, 0};
-  if (text == "shuffled") return {text, FrameOrderKind::Shuffled, 0};
-  if (text == "shuffled-sequence") return {text, FrameOrderKind::ShuffledSequence, 0};
+  if (text == "sequence") return {text, FrameOrderKind::Sequence, 0, {}};
+  if (text == "shuffled") return {text, FrameOrderKind::Shuffled, 0, {}};
+  if (text == "shuffled-sequence") return {text, FrameOrderKind::ShuffledSequence, 0, {}};
   const std::string bad = "bench-real: --order: '" + text + "': ";
   if (text.rfind("cuts:", 0) == 0) {
     const int n = countAfter(text, 5);
     if (n < 2) throw Error(bad + "N (the segments) must be a whole number >= 2");
-    return {"cuts:" + std::to_string(n), FrameOrderKind::Cuts, n};
+    return {"cuts:" + std::to_string(n), FrameOrderKind::Cuts, n, {}};
   }
   if (text.rfind("stride:", 0) == 0) {
     const int k = countAfter(text, 7);
     if (k < 1) throw Error(bad + "K (the stride) must be a whole number >= 1");
-    return {"stride:" + std::to_string(k), FrameOrderKind::Stride, k};
+    return {"stride:" + std::to_string(k), FrameOrderKind::Stride, k, {}};
   }
   if (text.rfind("away:", 0) == 0) {
     const int n = countAfter(text, 5);
     if (n < 1) throw Error(bad + "N (the frames of the other scene) must be a whole number >= 1");
-    return {"away:" + std::to_string(n), FrameOrderKind::Away, n};
+    return {"away:" + std::to_string(n), FrameOrderKind::Away, n, {}};
+  }
+  if (text.rfind("return:", 0) == 0) {
+    const std::vector<FrameRange> ranges = rangesAfter(text, 7);
+    if (ranges.size() < 2)
+      throw Error(bad +
+                  "needs two or more ranges of frames A-B joined by '+' (the start, ..., the "
+                  "return), e.g. return:0-70+110-150+70-0");
+    std::string name = "return:";
+    for (std::size_t i = 0; i < ranges.size(); ++i) {
+      if (i > 0) name += '+';
+      name += std::to_string(ranges[i].first);
+      name += '-';
+      name += std::to_string(ranges[i].last);
+    }
+    return {name, FrameOrderKind::Return, static_cast<int>(ranges.size()), ranges};
   }
   throw Error("bench-real: --order: unknown order '" + text + "' (known: " + kKnownOrders + ")");
 }
@@ -125,6 +159,26 @@ FramePlan planFrames(const FrameOrder& order, int frames, std::uint64_t seed) {
       plan.awayEnd = plan.frames.size();
       plan.frames.insert(plan.frames.end(), sequence.begin() + frames / 2, sequence.end());
       break;
+    case FrameOrderKind::Return: {
+      std::set<int> seen;
+      for (const FrameRange& r : order.ranges) {
+        if (std::max(r.first, r.last) >= frames)
+          throw Error("bench-real: --order: '" + order.name + "': the range " +
+                      std::to_string(r.first) + "-" + std::to_string(r.last) +
+                      " reaches beyond the " + std::to_string(frames) +
+                      " frames benchmarked (0 .. " + std::to_string(frames - 1) + ")");
+        plan.rangeStarts.push_back(plan.frames.size());
+        const int step = r.last >= r.first ? 1 : -1;
+        for (int k = r.first;; k += step) {
+          plan.frames.push_back(k);
+          plan.repeatsFrames = plan.repeatsFrames || !seen.insert(k).second;
+          if (k == r.last) break;
+        }
+      }
+      plan.awayStart = plan.rangeStarts[1];
+      plan.awayEnd = plan.rangeStarts.back();
+      break;
+    }
   }
   return plan;
 }

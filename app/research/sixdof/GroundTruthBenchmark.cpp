@@ -69,14 +69,24 @@ void GroundTruthBenchmarkOptions::check() const {
   }
 }
 
+std::vector<double> scoredErrors(const MethodRun& run, const std::vector<bool>& truth) {
+  std::vector<double> out;
+  if (run.plan.repeatsFrames) {
+    for (std::size_t i = 0; i < run.playedErrorPx.size() && i < run.playedScored.size(); ++i)
+      if (run.playedScored[i]) out.push_back(run.playedErrorPx[i]);
+    return out;
+  }
+  const std::vector<bool> played = playedFrames(run.plan, static_cast<int>(truth.size()));
+  for (std::size_t k = 0; k < truth.size() && k < run.errorPx.size(); ++k)
+    if (truth[k] && played[k]) out.push_back(run.errorPx[k]);
+  return out;
+}
+
 MethodSummary summarise(const MethodRun& run, const std::vector<bool>& truth) {
   MethodSummary s;
   std::vector<double> errors;
-  const std::vector<bool> played = playedFrames(run.plan, static_cast<int>(truth.size()));
-  for (std::size_t k = 0; k < truth.size() && k < run.errorPx.size(); ++k) {
-    if (!truth[k] || !played[k]) continue;
+  for (const double e : scoredErrors(run, truth)) {
     ++s.frames;
-    const double e = run.errorPx[k];
     if (std::isnan(e)) continue;
     ++s.posed;
     s.wrong += e > kWrongPosePx ? 1 : 0;
@@ -131,6 +141,37 @@ AwayReturn awayReturn(const MethodRun& run) {
       r.framesToReacquire = static_cast<int>(i - run.plan.awayEnd);
   }
   return r;
+}
+
+std::vector<RangeOutcome> rangeOutcomes(const MethodRun& run, double wrongPx) {
+  std::vector<RangeOutcome> out;
+  if (run.order.kind != FrameOrderKind::Return) return out;
+  const std::vector<std::size_t>& starts = run.plan.rangeStarts;
+  const std::size_t plays = run.plan.frames.size();
+  for (std::size_t r = 0; r < starts.size() && r < run.order.ranges.size(); ++r) {
+    RangeOutcome o;
+    o.range = run.order.ranges[r];
+    const std::size_t end = r + 1 < starts.size() ? starts[r + 1] : plays;
+    for (std::size_t i = starts[r]; i < end && i < run.playedScored.size(); ++i) {
+      if (!run.playedScored[i]) continue;
+      ++o.frames;
+      const double e = run.playedErrorPx[i];
+      if (std::isnan(e)) continue;
+      ++o.posed;
+      o.within += e <= kWrongPosePx ? 1 : 0;
+      o.wrong += e > wrongPx ? 1 : 0;
+      if (o.framesToReacquire < 0 && e <= kWrongPosePx)
+        o.framesToReacquire = static_cast<int>(i - starts[r]);
+    }
+    // cpuMs holds every pass's plays one after the other.
+    double sum = 0.0;
+    int n = 0;
+    for (std::size_t pass = 0; plays > 0 && (pass + 1) * plays <= run.cpuMs.size(); ++pass)
+      for (std::size_t i = starts[r]; i < end; ++i, ++n) sum += run.cpuMs[pass * plays + i];
+    if (n > 0) o.cpuMeanMs = sum / n;
+    out.push_back(o);
+  }
+  return out;
 }
 
 PredictionSummary summarisePrediction(const MethodRun& run, const std::vector<bool>& truth) {
@@ -214,10 +255,16 @@ class ReftrackMethod final : public PoseMethod {
   void coldStart() override { tracker_->reset(); }
   double predictedErrorPx() const override { return predicted_; }
   bool uncertain() const override { return uncertain_; }
+  RecoveryStage lastStart() const override { return start_; }
+  RecoveryStage lastSearch() const override { return search_; }
+  double lastSearchCpuMs() const override { return searchCpuMs_; }
   std::optional<RigidPose> locate(const cv::Mat& frame, std::string& reason) override {
     const MultiReferenceResult multi = tracker_->process(frame);
     predicted_ = multi.predictedErrorPx.value_or(NAN);
     uncertain_ = multi.uncertain;
+    start_ = multi.start;
+    search_ = multi.relocalisation.attempted ? multi.relocalisation.stop : RecoveryStage::None;
+    searchCpuMs_ = multi.relocalisation.attempted ? multi.relocalisation.cpuMs : NAN;
     const PoseTrackingResult& r = multi.tracking;
     if (r.state == TrackingState::Tracking && r.worldToCamera) return r.worldToCamera;
     reason = r.message.substr(0, r.message.find(" ("));
@@ -232,6 +279,8 @@ class ReftrackMethod final : public PoseMethod {
   std::unique_ptr<MultiReferenceTracker> tracker_;
   double predicted_ = NAN;
   bool uncertain_ = false;
+  RecoveryStage start_ = RecoveryStage::None, search_ = RecoveryStage::None;
+  double searchCpuMs_ = NAN;
 };
 
 class PeerMethod final : public PoseMethod {
@@ -321,9 +370,23 @@ void playFrames(PoseMethod& method, const GroundTruthSequence& s,
                 const std::vector<Eigen::Vector3d>& cube, bool score, MethodRun& run,
                 const std::vector<cv::Mat>& away) {
   method.startRun();
-  for (int k : run.plan.frames) {
+  if (score) {
+    run.playedErrorPx.assign(run.plan.frames.size(), NAN);
+    run.playedScored.assign(run.plan.frames.size(), false);
+  }
+  for (std::size_t position = 0; position < run.plan.frames.size(); ++position) {
+    const int k = run.plan.frames[position];
     if (run.plan.coldStarts) method.coldStart();
     std::string reason;
+    // What the method's ways back did on the frame (reftrack), counted on the scored pass.
+    const auto countStops = [&] {
+      if (!score) return;
+      if (method.lastStart() != RecoveryStage::None) ++run.startStops[toString(method.lastStart())];
+      if (method.lastSearch() != RecoveryStage::None) {
+        ++run.searchStops[toString(method.lastSearch())];
+        run.searchCpuMs.push_back(method.lastSearchCpuMs());
+      }
+    };
     if (k < 0) {  // the other scene: no true pose, so any pose is wrong
       if (away.empty()) throw Error("bench-real: an away:N order without the other scene's frames");
       const double cpu0 = threadCpuMs();
@@ -332,12 +395,14 @@ void playFrames(PoseMethod& method, const GroundTruthSequence& s,
       run.cpuMs.push_back(threadCpuMs() - cpu0);
       run.awayCpuMs.push_back(run.cpuMs.back());
       if (score && posed) ++run.awayPosed;
+      countStops();
       continue;
     }
     const std::size_t frame = static_cast<std::size_t>(k);
     const double cpu0 = threadCpuMs();
     const std::optional<RigidPose> pose = method.locate(s.frames[frame], reason);
     run.cpuMs.push_back(threadCpuMs() - cpu0);
+    countStops();
     if (!score) continue;
     run.poses[frame] = pose;
     if (frame < run.predictedErrorPx.size())
@@ -345,16 +410,23 @@ void playFrames(PoseMethod& method, const GroundTruthSequence& s,
     if (frame < run.uncertain.size()) run.uncertain[frame] = method.uncertain();
     const std::optional<RigidPose>& truth = s.truth[frame];
     if (!truth) continue;
-    if (pose)
+    run.playedScored[position] = true;
+    if (pose) {
       run.errorPx[frame] = cubeErrorPx(s.camera, cube, *truth, *pose);
-    else
+      run.playedErrorPx[position] = run.errorPx[frame];
+    } else {
+      run.errorPx[frame] = NAN;  // a repeated frame keeps its last play
       ++run.noPose[reason];
+    }
   }
 }
 
 void replayPeerPoses(const PeerPoses& peer, const GroundTruthSequence& s,
                      const std::vector<Eigen::Vector3d>& cube, MethodRun& run) {
-  for (int k : run.plan.frames) {
+  run.playedErrorPx.assign(run.plan.frames.size(), NAN);
+  run.playedScored.assign(run.plan.frames.size(), false);
+  for (std::size_t position = 0; position < run.plan.frames.size(); ++position) {
+    const int k = run.plan.frames[position];
     if (k < 0) throw Error("bench-real: a per-frame peer's poses cannot be replayed in away:N");
     const std::size_t frame = static_cast<std::size_t>(k);
     run.cpuMs.push_back(peer.cpuMs.at(frame));
@@ -362,10 +434,13 @@ void replayPeerPoses(const PeerPoses& peer, const GroundTruthSequence& s,
     run.poses[frame] = peer.poses[frame];
     const std::optional<RigidPose>& truth = s.truth[frame];
     if (!truth) continue;
-    if (peer.poses[frame])
+    run.playedScored[position] = true;
+    if (peer.poses[frame]) {
       run.errorPx[frame] = cubeErrorPx(s.camera, cube, *truth, *peer.poses[frame]);
-    else
+      run.playedErrorPx[position] = run.errorPx[frame];
+    } else {
       ++run.noPose[peer.reasons[frame]];
+    }
   }
 }
 

@@ -26,6 +26,7 @@
 #include "app/research/sixdof/PerFramePeerPoses.hpp"
 #include "engine/config/TrackerParams.hpp"
 #include "engine/reference/ReferencePreparer.hpp"
+#include "engine/relocalisation/RecoveryStage.hpp"
 
 namespace reftrack::app {
 
@@ -81,12 +82,22 @@ struct MethodRun {
   // frames without a true pose or not played are NaN too.
   std::vector<double> errorPx;
   std::vector<std::optional<RigidPose>> poses;  // per frame index, first pass: world->camera
-  std::vector<double> cpuMs;                    // every played frame, every pass
+  // Per position in plan.frames, first pass: the cube error (NaN without a pose) and whether the
+  // play is scored (a frame of the sequence with a true pose). Orders that repeat frames
+  // (return:) are scored per play; errorPx and poses then hold a frame's last play.
+  std::vector<double> playedErrorPx;
+  std::vector<bool> playedScored;
+  std::vector<double> cpuMs;  // every played frame, every pass
   // away:N: the frames of the other scene given a pose (every one is wrong; first pass) and
   // their thread CPU times (every pass; also in cpuMs).
   int awayPosed = 0;
   std::vector<double> awayCpuMs;
   std::map<std::string, int> noPose;  // reason -> played frames with a true pose but none estimated
+  // reftrack only, first pass, every played frame: what stopped each start near a reference and
+  // each relocalisation attempt (RecoveryStage names -> count), and the thread CPU of each
+  // relocalisation attempt with its verification.
+  std::map<std::string, int> startStops, searchStops;
+  std::vector<double> searchCpuMs;
   // reftrack only (NaN elsewhere), per frame index, first pass: the cube error its covariance
   // predicts (MultiReferenceResult::predictedErrorPx for the scoring cube), and whether the frame
   // was reported uncertain (pose.max_predicted_error_px).
@@ -105,6 +116,10 @@ struct MethodSummary {
   double cpuMedianMs = NAN;  // median thread CPU per processed frame
   double coveragePercent() const { return frames > 0 ? 100.0 * posed / frames : 0.0; }
 };
+
+// The cube errors of the scored plays (NaN: no pose): per frame index with a true pose played by
+// run.plan, or per play when the plan repeats frames (return: orders).
+std::vector<double> scoredErrors(const MethodRun& run, const std::vector<bool>& truth);
 
 // `truth[k]`: frame k has a true pose (frames without one, or not in run.plan, are not scored).
 MethodSummary summarise(const MethodRun& run, const std::vector<bool>& truth);
@@ -130,6 +145,19 @@ struct AwayReturn {
   int wrongAfter = 0;
 };
 AwayReturn awayReturn(const MethodRun& run);
+
+// One range of a return: order as a method played it (first pass; CPU over every pass).
+struct RangeOutcome {
+  FrameRange range;
+  int frames = 0;                        // plays with a true pose
+  int posed = 0, within = 0, wrong = 0;  // ... posed; within kWrongPosePx; more than wrongPx off
+  // Plays from the range's start to the first pose within kWrongPosePx (0: its first frame);
+  // -1: none in the range.
+  int framesToReacquire = -1;
+  double cpuMeanMs = NAN;  // mean thread CPU per played frame of the range
+};
+// Per range of a return: order (none for the other orders); `wrongPx`: the wrong threshold.
+std::vector<RangeOutcome> rangeOutcomes(const MethodRun& run, double wrongPx);
 
 // Calibration of the predicted error (issue 32) over the posed frames with a true pose and a
 // prediction: true / predicted cube error per frame, and the predictions themselves.
@@ -184,6 +212,11 @@ class PoseMethod {
   // (reftrack only).
   virtual double predictedErrorPx() const { return NAN; }
   virtual bool uncertain() const { return false; }
+  // The last located frame's ways back (reftrack only): what stopped the start near a reference
+  // and the relocalisation attempt (None: not tried), and that attempt's thread CPU.
+  virtual RecoveryStage lastStart() const { return RecoveryStage::None; }
+  virtual RecoveryStage lastSearch() const { return RecoveryStage::None; }
+  virtual double lastSearchCpuMs() const { return NAN; }
 };
 
 // One pass of `method` over run.plan: startRun(), then each planned frame of `sequence` in turn

@@ -67,6 +67,11 @@ std::string describe(const FrameOrder& order, int frames) {
     case FrameOrderKind::Away:
       return textf("%s: in order, %d frames of another scene after frame %d, one sequence",
                    order.name.c_str(), order.count, frames / 2 - 1);
+    case FrameOrderKind::Return:
+      return textf(
+          "%s: the ranges of frames one after the other, one sequence, no reset (the first: the "
+          "start, the last: the return; scored per play)",
+          order.name.c_str());
   }
   return "";
 }
@@ -121,6 +126,71 @@ std::string awayLine(const MethodRun& run, double fps, const std::string& scene)
                                  : textf("after %d frames", back.framesToReacquire).c_str(),
       back.wrongAfter);
 }
+
+}  // namespace
+
+std::string stopLines(const std::vector<MethodRun>& runs, const std::string& prefix) {
+  std::string out;
+  const auto breakdown = [](const std::map<std::string, int>& stops) {
+    std::string text;
+    for (const auto& [stage, n] : stops)
+      text += textf("%s%s %d", text.empty() ? "" : ", ", stage.c_str(), n);
+    return text;
+  };
+  for (const MethodRun& run : runs) {
+    if (!run.startStops.empty())
+      out +=
+          textf("%s%s %s: per frame not tracked, the start near a reference: %s\n", prefix.c_str(),
+                run.method.c_str(), run.order.name.c_str(), breakdown(run.startStops).c_str());
+    if (!run.searchStops.empty()) {
+      std::vector<double> cpu = run.searchCpuMs;
+      out += textf(
+          "%s%s %s: relocalisation attempts, what stopped each: %s; thread CPU per attempt with "
+          "its verification: median %s ms\n",
+          prefix.c_str(), run.method.c_str(), run.order.name.c_str(),
+          breakdown(run.searchStops).c_str(), cell(percentileOf(cpu, 0.5), 1).c_str());
+    }
+  }
+  return out;
+}
+
+std::string returnLines(const MethodRun& run, double fps, double wrongPx, int firstFrame) {
+  const std::vector<RangeOutcome> ranges = rangeOutcomes(run, wrongPx);
+  if (ranges.empty()) return "";
+  std::string out = textf(
+      "%s %s: per range (frames %d on): posed, within %.0f px, wrong (> %g px), the first pose "
+      "within %.0f px after k frames, CPU mean per frame:",
+      run.method.c_str(), run.order.name.c_str(), firstFrame, kWrongPosePx, wrongPx, kWrongPosePx);
+  int awayFrames = 0, awayPosed = 0, awayWrong = 0;
+  double awayCpu = 0.0;
+  for (std::size_t i = 0; i < ranges.size(); ++i) {
+    const RangeOutcome& o = ranges[i];
+    out += textf("%s %d-%d %d/%d %d %d k=%s %s ms", i ? ";" : "", o.range.first, o.range.last,
+                 o.posed, o.frames, o.within, o.wrong,
+                 o.framesToReacquire < 0 ? "never" : std::to_string(o.framesToReacquire).c_str(),
+                 cell(o.cpuMeanMs, 2).c_str());
+    if (i == 0 || i + 1 == ranges.size()) continue;
+    awayFrames += o.range.size();
+    awayPosed += o.posed;
+    awayWrong += o.wrong;
+    if (!std::isnan(o.cpuMeanMs)) awayCpu += o.cpuMeanMs * o.range.size();
+  }
+  const RangeOutcome& back = ranges.back();
+  out += "\n";
+  out += textf(
+      "%s %s: between the start and the return %d frames, %d posed, %d wrong (target 0); CPU "
+      "mean %s ms per frame = %s%% of one core at %.0f fps; the return: first pose within %.0f "
+      "px %s, %d wrong\n",
+      run.method.c_str(), run.order.name.c_str(), awayFrames, awayPosed, awayWrong,
+      cell(awayFrames ? awayCpu / awayFrames : NAN, 2).c_str(),
+      cell(awayFrames ? awayCpu / awayFrames * fps / 10.0 : NAN, 1).c_str(), fps, kWrongPosePx,
+      back.framesToReacquire < 0 ? "never"
+                                 : textf("after %d frames", back.framesToReacquire).c_str(),
+      back.wrong);
+  return out;
+}
+
+namespace {
 
 // One line of a cuts:N run: per cut its position, the frames either side, the frames needed to
 // re-acquire (k) and the wrong poses until the next cut; then the worst.
@@ -240,6 +310,7 @@ std::string groundTruthBenchmarkTable(const GroundTruthBenchmarkResult& r) {
     if (run.order.kind == FrameOrderKind::Cuts) out += cutsLine(run, r.firstFrame);
   for (const MethodRun& run : r.runs)
     if (run.order.kind == FrameOrderKind::Away) out += awayLine(run, r.fps, r.awayDescription);
+  for (const MethodRun& run : r.runs) out += returnLines(run, r.fps, kWrongPosePx, r.firstFrame);
   out += reacquiredLines(r);
   for (const MethodRun& run : r.runs) {
     const int behind = summarise(run, r.truth).behind;
@@ -261,6 +332,7 @@ std::string groundTruthBenchmarkTable(const GroundTruthBenchmarkResult& r) {
         cell(p.ratioMedian, 2).c_str(), cell(p.ratioP25, 2).c_str(), cell(p.ratioP75, 2).c_str(),
         p.uncertain, cell(p.uncertainTrueMeanPx, 2).c_str(), p.wrongNotUncertain);
   }
+  out += stopLines(r.runs, "");
   for (const MethodRun& run : r.runs)
     for (const auto& [reason, frames] : run.noPose)
       out += textf("no pose, %s %s: %d x %s\n", run.method.c_str(), run.order.name.c_str(), frames,

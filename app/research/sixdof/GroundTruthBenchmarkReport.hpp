@@ -36,6 +36,16 @@ bool usesMap(const GroundTruthBenchmarkResult& result);
 
 std::string groundTruthBenchmarkTable(const GroundTruthBenchmarkResult& result);
 
+// The lines of a return: run (empty for other orders): per range its plays posed, within 5 px,
+// more than `wrongPx` off, the plays to the first pose within 5 px and the CPU per frame; then
+// the frames between the start and the return (posed, wrong, CPU and its share of one core at
+// `fps`) and how the return was re-acquired. `firstFrame`: the input's index of frame 0.
+std::string returnLines(const MethodRun& run, double fps, double wrongPx, int firstFrame);
+
+// Per run with recovery counts (reftrack): what stopped each start near a reference and each
+// relocalisation attempt, and the attempts' median thread CPU; each line starts with `prefix`.
+std::string stopLines(const std::vector<MethodRun>& runs, const std::string& prefix);
+
 // Header `frame,true_pose,<method>_<order>_px...`, then `<method>_<order>_predicted_px` for the
 // runs with a predicted error (reftrack); one row per frame (frame: the input's index); an empty
 // cell: no pose (or no prediction); inf: the pose put the whole cube behind the camera.

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <set>
 
+#include "app/research/sixdof/FrameOrder.hpp"
 #include "engine/config/ConfigFile.hpp"
 #include "engine/config/KnownKeys.hpp"
 #include "engine/core/Error.hpp"
@@ -14,8 +15,8 @@ namespace reftrack::app {
 namespace {
 
 const std::vector<std::string> kClipKeys = {
-    "name",        "folder",     "frames",     "camera", "ground_truth",
-    "first_frame", "last_frame", "references", "cube",   "wrong_px"};
+    "name",       "folder",     "frames", "camera",   "ground_truth", "first_frame",
+    "last_frame", "references", "cube",   "wrong_px", "orders"};
 
 std::string requiredText(const YamlNode& clip, const std::string& key) {
   const YamlNode n = clip[key];
@@ -129,6 +130,27 @@ RealClip readClip(const YamlNode& n) {
   readCube(n, clip);
   if (!n["wrong_px"].present()) n.fail(n.name() + ": 'wrong_px' is missing (px)");
   clip.wrongPx = positive(n["wrong_px"]);
+  if (const YamlNode orders = n["orders"]; orders.present()) {
+    if (!orders.isList() || orders.size() == 0)
+      orders.fail(orders.name() + " must be a list of one or more frame orders, e.g. [sequence]");
+    for (const YamlNode& o : orders.children()) {
+      if (!o.text()) o.fail(o.name() + " must be an order's name, e.g. shuffled-sequence");
+      clip.orders.push_back(*o.text());
+    }
+    try {
+      const std::vector<FrameOrder> parsed = parseFrameOrders(clip.orders);
+      clip.orders.clear();
+      for (const FrameOrder& order : parsed) {
+        if (order.kind == FrameOrderKind::Away)
+          throw Error(order.name + ": the suite plays no other scene (away:N)");
+        if (clip.lastFrame)  // a return: order's ranges within the clip's frames
+          planFrames(order, clip.frameCount(), 1);
+        clip.orders.push_back(order.name);
+      }
+    } catch (const Error& e) {
+      orders.fail(orders.name() + ": " + e.what());
+    }
+  }
   return clip;
 }
 

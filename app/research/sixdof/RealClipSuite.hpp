@@ -14,6 +14,8 @@
 //       references: [200, 220]          # input frame indices within the range, >= 2, distinct
 //       cube: {edge: 0.08, in_front_of_reference: {distance: 1.0}}  # or base_centre: [x, y, z]
 //       wrong_px: 20                    # a pose more than this off is wrong
+//       orders: [return:0-70+110-150+70-0]  # optional: this clip's frame orders instead of
+//                                       #   the suite's (--order); no away:N
 #include <Eigen/Core>
 #include <filesystem>
 #include <optional>
@@ -35,6 +37,7 @@ struct RealClip {
   Eigen::Vector3d cubeBaseCentre = Eigen::Vector3d::Zero();  // world, m (cubeInFrontM == 0)
   double cubeInFrontM = 0.0;  // > 0: centred this far in front of the first reference's camera
   double wrongPx = 5.0;
+  std::vector<std::string> orders;  // its own frame orders (`--order` names); empty: the suite's
 
   // Frames benchmarked (last - first + 1), 0 when the range runs to the end.
   int frameCount() const { return lastFrame ? *lastFrame - firstFrame + 1 : 0; }
@@ -51,7 +54,8 @@ struct RealClipSuite {
 // "suite file 'FILE': line N: ..." for what is wrong in it: not YAML, an unknown key (with the
 // nearest known one), a missing or mistyped value, no clips, a name given twice, a range with
 // last_frame < first_frame, references outside the range, fewer than two or one given twice,
-// both or neither cube placement, a non-positive edge, distance or wrong_px, an absolute path.
+// both or neither cube placement, a non-positive edge, distance or wrong_px, an absolute path, an
+// unknown or away:N order, or a return: range beyond the clip's frames.
 RealClipSuite loadRealClipSuite(const std::filesystem::path& file);
 // The same for the text of a suite file; `what` names it in messages.
 RealClipSuite parseRealClipSuite(const std::string& text, const std::string& what);

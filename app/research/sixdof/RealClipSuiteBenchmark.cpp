@@ -101,7 +101,11 @@ RealClipSuiteResult runRealClipSuite(const RealClipSuite& suite, const RealClipS
   RealClipSuiteResult result;
   result.suiteDescription = suite.description;
   result.dataRoot = o.dataRoot;
-  result.orders = o.orders;
+  // The orders run: the suite's, and each clip's own (RealClip::orders) in first appearance.
+  for (const RealClipPlan& plan : selection.found)
+    for (const std::string& order : plan.clip.orders.empty() ? o.orders : plan.clip.orders)
+      if (std::find(result.orders.begin(), result.orders.end(), order) == result.orders.end())
+        result.orders.push_back(order);
   result.skipped = selection.skipped;
   result.peerCache = o.peerCache.has_value();
   const std::optional<PeerPoseCache> cache =
@@ -141,7 +145,7 @@ RealClipSuiteResult runRealClipSuite(const RealClipSuite& suite, const RealClipS
     b.cubeEdge = clip.cubeEdge;
     b.cubeInFrontM = clip.cubeInFrontM;
     b.methods = o.methods;
-    b.orders = o.orders;
+    b.orders = clip.orders.empty() ? o.orders : clip.orders;
     b.shuffleSeed = o.shuffleSeed;
     b.mapFailureIsLoss = true;
     bool anyPeer = false;

@@ -33,12 +33,11 @@ std::string cell(double value, int decimals) {
 // camera are wrong).
 std::pair<int, int> withinAndWrong(const MethodRun& run, const std::vector<bool>& truth,
                                    double within, double wrong) {
-  const std::vector<bool> played = playedFrames(run.plan, static_cast<int>(truth.size()));
   int good = 0, bad = 0;
-  for (std::size_t k = 0; k < truth.size() && k < run.errorPx.size(); ++k) {
-    if (!truth[k] || !played[k] || std::isnan(run.errorPx[k])) continue;
-    good += run.errorPx[k] <= within ? 1 : 0;
-    bad += run.errorPx[k] > wrong ? 1 : 0;
+  for (const double e : scoredErrors(run, truth)) {
+    if (std::isnan(e)) continue;
+    good += e <= within ? 1 : 0;
+    bad += e > wrong ? 1 : 0;
   }
   return {good, bad};
 }
@@ -67,6 +66,11 @@ std::string orderLegend(const std::vector<std::string>& orders, std::uint64_t se
         break;
       case FrameOrderKind::Away:
         what = "in order with another scene in the middle";
+        break;
+      case FrameOrderKind::Return:
+        what =
+            "the ranges of the clip's frames one after the other, one sequence (the start, away, "
+            "the return; scored per play)";
         break;
     }
     out += (out.empty() ? "" : "; ") + order.name + ": " + what;
@@ -202,6 +206,11 @@ std::string realClipSuiteTable(const RealClipSuiteResult& result) {
                      cell(p.frames > 0 ? p.ratioMedian : NAN, 2).c_str(),
                      cell(ranNothing ? NAN : s.cpuMedianMs, 2).c_str());
       }
+  }
+  for (const RealClipRun& c : result.clips) {
+    for (const MethodRun& run : c.benchmark.runs)
+      out += returnLines(run, c.benchmark.fps, c.clip.wrongPx, c.benchmark.firstFrame);
+    out += stopLines(c.benchmark.runs, c.clip.name + ": ");
   }
   const std::vector<SuiteRatio> ratios = suiteRatios(result);
   const std::optional<SuiteRatio> worst = worstRatio(ratios);

@@ -62,7 +62,14 @@ TEST_F(RelocaliserOnCornerWorld, RandomViewsRelocaliseAccuratelyAndNeverWrongly)
     const cv::Mat frame = world_->render(views[i], 1000 + static_cast<int>(i));
     const RelocalisationAttempt a = relocaliser.locate(frame);
     ms.push_back(a.ms);
-    if (!a.candidate) continue;
+    if (!a.candidate) {
+      // No pose: one of the search's stages says it stopped the attempt.
+      EXPECT_TRUE(a.stop == RecoveryStage::TooFewMatches || a.stop == RecoveryStage::PnpInliers ||
+                  a.stop == RecoveryStage::InlierShare || a.stop == RecoveryStage::InlierSpread)
+          << "view " << i << ": " << toString(a.stop) << " (" << a.message << ")";
+      continue;
+    }
+    EXPECT_EQ(a.stop, RecoveryStage::None) << "view " << i;
     ++found;
     const double e =
         1000.0 * (a.candidate->worldToCamera.cameraCentre() - views[i].cameraCentre()).norm();
@@ -100,6 +107,7 @@ TEST_F(RelocaliserOnCornerWorld, FramesWithoutTheSceneGiveNoCandidate) {
   const RelocalisationAttempt a = relocaliser.locate(black);
   EXPECT_FALSE(a.candidate);
   EXPECT_NE(a.message.find("too few keypoints"), std::string::npos) << a.message;
+  EXPECT_EQ(a.stop, RecoveryStage::TooFewKeypoints);
 
   cv::Mat flat(world_->size, CV_8UC3, cv::Scalar(90, 120, 150));
   EXPECT_FALSE(relocaliser.locate(flat).candidate);
@@ -118,6 +126,9 @@ TEST_F(RelocaliserOnCornerWorld, FramesWithoutTheSceneGiveNoCandidate) {
     const RelocalisationAttempt w =
         relocaliser.locate(other.render(views[i], 50 + static_cast<int>(i)));
     EXPECT_FALSE(w.candidate) << "wrong-scene view " << i << ": " << w.message;
+    // Textured, so keypoints are found: a later stage refuses it.
+    EXPECT_NE(w.stop, RecoveryStage::None) << "wrong-scene view " << i;
+    EXPECT_NE(w.stop, RecoveryStage::TooFewKeypoints) << "wrong-scene view " << i;
   }
 }
 

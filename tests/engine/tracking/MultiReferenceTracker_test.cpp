@@ -344,6 +344,62 @@ TEST(MultiReferenceTracker, RelocalisationBacksOffWhileTheSceneIsAwayAndFindsIts
   EXPECT_LT(frame, patience) << "no attempt within " << patience << " frames of the return";
 }
 
+// Each way back says what stopped it (MultiReferenceResult::start, relocalisation.stop): the first
+// frame's start is verified, tracked frames try none, an unrelated view is refused by a search
+// stage (never verified), and the return is verified by the relocaliser's attempt. With a budget
+// that never runs out every lost frame is searched, so each reports a start and an attempt.
+TEST(MultiReferenceTracker, EveryWayBackSaysWhatStoppedIt) {
+  const PlaneMultiWorld world = fourReferences();
+  const MultiReferenceMap map = withKeypoints(world);
+  TrackerParams params;
+  params.relocalisation.budgetMsPerFrame = 1000.0;
+  params.relocalisation.budgetBurstMs = 1000.0;
+  params.relocalisation.attemptEveryFrames = 1;
+  MultiReferenceTracker tracker(map, params);
+  for (int k = 0; k < 3; ++k) {
+    const MultiReferenceResult r =
+        tracker.process(world.render(PlaneMultiWorld::cameraAlong(-0.1 + 0.01 * k, k), 700 + k));
+    ASSERT_EQ(r.tracking.state, TrackingState::Tracking) << k;
+    EXPECT_EQ(r.start, k == 0 ? RecoveryStage::Verified : RecoveryStage::None) << k;
+    EXPECT_FALSE(r.relocalisation.attempted) << k;
+    EXPECT_EQ(r.relocalisation.stop, RecoveryStage::None) << k;
+  }
+  const std::set<RecoveryStage> refusals = {
+      RecoveryStage::TooFewKeypoints, RecoveryStage::TooFewMatches,
+      RecoveryStage::PnpInliers,      RecoveryStage::InlierShare,
+      RecoveryStage::InlierSpread,    RecoveryStage::SeededPass,
+      RecoveryStage::Correlation,     RecoveryStage::DistinctiveCorners,
+      RecoveryStage::KeypointSupport};
+  int attempts = 0;
+  for (int k = 0; k < 6; ++k) {
+    const MultiReferenceResult r = tracker.process(test::texturedImage(world.size, 900 + k));
+    ASSERT_FALSE(r.tracking.worldToCamera.has_value()) << k;
+    // The re-seed from the last pose comes first (references.reseed_frames); the start near a
+    // reference and the relocaliser after it, each refused.
+    if (r.start != RecoveryStage::None) {
+      EXPECT_TRUE(refusals.count(r.start) || r.start == RecoveryStage::StartNoPose)
+          << k << ": " << toString(r.start);
+    }
+    if (r.relocalisation.attempted) {
+      ++attempts;
+      EXPECT_TRUE(refusals.count(r.relocalisation.stop))
+          << k << ": " << toString(r.relocalisation.stop) << " (" << r.relocalisation.message
+          << ")";
+    }
+  }
+  EXPECT_GE(attempts, 4);  // every lost frame past the re-seed ones is searched
+  const MultiReferenceResult back = tracker.process(world.render(rolledNearReferenceThree(), 600));
+  ASSERT_EQ(back.tracking.state, TrackingState::Tracking) << back.tracking.message;
+  ASSERT_TRUE(back.relocalisation.attempted);
+  EXPECT_EQ(back.relocalisation.stop, RecoveryStage::Verified) << back.relocalisation.message;
+  EXPECT_TRUE(back.relocalisation.succeeded);
+  // A blank frame is not searched and says so.
+  const MultiReferenceResult blank = tracker.process(cv::Mat::zeros(world.size, CV_8U));
+  EXPECT_FALSE(blank.tracking.worldToCamera.has_value());
+  EXPECT_FALSE(blank.relocalisation.attempted);
+  EXPECT_EQ(blank.start, RecoveryStage::BlankFrame) << blank.tracking.message;
+}
+
 // With a budget clock (a live camera: MultiReferenceTracker::setBudgetClock) the budget is
 // charged the clock's time instead of the modelled cost: a clock that advances 15 ms per reading
 // charges each recovery exactly 15 ms, so with a burst of 20 and 3 ms per lost frame the frames

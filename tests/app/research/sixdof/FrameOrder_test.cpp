@@ -188,5 +188,50 @@ TEST(FrameOrder, AwayPlaysTheOtherSceneBetweenTheTwoHalves) {
   EXPECT_THROW(planFrames(parseFrameOrder("away:5"), 1, 1), Error);
 }
 
+// return:A-B+C-D+...: the ranges one after the other (backwards when B < A), frames may repeat;
+// awayStart/awayEnd bound what lies between the first range and the last (the return).
+TEST(FrameOrder, ReturnPlaysItsRangesAsOneSequence) {
+  const FrameOrder o = parseFrameOrder("return:0-3+8-9+03-1");
+  EXPECT_EQ(o.name, "return:0-3+8-9+3-1");
+  EXPECT_EQ(o.kind, FrameOrderKind::Return);
+  EXPECT_EQ(o.count, 3);
+  EXPECT_FALSE(o.coldStarts());
+  ASSERT_EQ(o.ranges.size(), 3u);
+  EXPECT_EQ(o.ranges[2], (FrameRange{3, 1}));
+  EXPECT_EQ(o.ranges[2].size(), 3);
+  const FramePlan plan = planFrames(o, 10, 1);
+  EXPECT_EQ(plan.frames, (std::vector<int>{0, 1, 2, 3, 8, 9, 3, 2, 1}));
+  EXPECT_EQ(plan.rangeStarts, (std::vector<std::size_t>{0, 4, 6}));
+  EXPECT_EQ(plan.awayStart, 4u);
+  EXPECT_EQ(plan.awayEnd, 6u);
+  EXPECT_TRUE(plan.repeatsFrames);
+  EXPECT_FALSE(plan.coldStarts);
+  EXPECT_TRUE(plan.cuts.empty());
+  const std::vector<bool> played = playedFrames(plan, 10);
+  EXPECT_EQ(std::count(played.begin(), played.end(), true), 6);  // 0 1 2 3 8 9
+  // Ranges that do not repeat a frame; a one-frame range.
+  const FramePlan once = planFrames(parseFrameOrder("return:0-1+5-5+2-3"), 6, 1);
+  EXPECT_EQ(once.frames, (std::vector<int>{0, 1, 5, 2, 3}));
+  EXPECT_FALSE(once.repeatsFrames);
+  EXPECT_EQ(parseFrameOrders({"sequence", "return:0-1+1-0"}).size(), 2u);
+}
+
+TEST(FrameOrder, BadReturnOrdersAreErrors) {
+  for (const char* bad :
+       {"return:", "return:0-70", "return:0-70+", "return:0-70+x-3", "return:0-70+5", "return:0+70",
+        "return:-1-3+4-5", "return:0-70++3-4", "return:1-2-3+4-5"}) {
+    const std::string m = test::errorMessage([&] { parseFrameOrder(bad); });
+    EXPECT_NE(m.find("--order: '" + std::string(bad) + "': needs two or more ranges of frames A-B"),
+              std::string::npos)
+        << bad << ": " << m;
+  }
+  const std::string m =
+      test::errorMessage([] { planFrames(parseFrameOrder("return:0-5+9-10+5-0"), 10, 1); });
+  EXPECT_NE(m.find("'return:0-5+9-10+5-0': the range 9-10 reaches beyond the 10 frames "
+                   "benchmarked (0 .. 9)"),
+            std::string::npos)
+      << m;
+}
+
 }  // namespace
 }  // namespace reftrack::app

@@ -199,6 +199,48 @@ TEST(GroundTruthBenchmarkReport, OtherOrdersAreNamedInTableAndCsv) {
   EXPECT_FALSE(cv::imread((dir / "e.png").string()).empty());
 }
 
+// A return: order's lines: per range posed/plays, within 5 px, wrong (> wrong_px), the plays to
+// the first pose within 5 px and the CPU; the frames between the start and the return with their
+// share of a core; and, per run with recovery counts, what stopped each way back.
+TEST(GroundTruthBenchmarkReport, ReturnRangesAndStopsAreReported) {
+  MethodRun m;
+  m.method = "reftrack";
+  m.order = parseFrameOrder("return:0-1+5-6+1-0");
+  m.plan = planFrames(m.order, 8, 1);
+  //                play:  0    1    2    3     4    5
+  m.playedErrorPx = {0.5, 0.5, NAN, 30.0, 6.0, 0.4};
+  m.playedScored.assign(6, true);
+  m.cpuMs = {1, 1, 3, 5, 2, 2};
+  const std::string lines = returnLines(m, 30.0, 20.0, 100);
+  EXPECT_NE(lines.find("reftrack return:0-1+5-6+1-0: per range (frames 100 on): posed, within 5 "
+                       "px, wrong (> 20 px), the first pose within 5 px after k frames, CPU mean "
+                       "per frame: 0-1 2/2 2 0 k=0 1.00 ms; 5-6 1/2 0 1 k=never 4.00 ms; 1-0 2/2 "
+                       "1 0 k=1 2.00 ms\n"),
+            std::string::npos)
+      << lines;
+  // Between: 2 frames at 4 ms mean = 12% of a core at 30 fps; the return's first play is 6 px off.
+  EXPECT_NE(lines.find("reftrack return:0-1+5-6+1-0: between the start and the return 2 frames, 1 "
+                       "posed, 1 wrong (target 0); CPU mean 4.00 ms per frame = 12.0% of one "
+                       "core at 30 fps; the return: first pose within 5 px after 1 frames, 0 "
+                       "wrong\n"),
+            std::string::npos)
+      << lines;
+  MethodRun sequence = m;
+  sequence.order = parseFrameOrder("sequence");
+  EXPECT_EQ(returnLines(sequence, 30.0, 20.0, 0), "");
+
+  EXPECT_EQ(stopLines({m}, "desk: "), "");  // no recovery counts: no line
+  m.startStops = {{"no start pose", 3}};
+  m.searchStops = {{"PnP inliers", 2}, {"verified", 1}};
+  m.searchCpuMs = {40.0, 10.0, 30.0};
+  EXPECT_EQ(stopLines({m}, "desk: "),
+            "desk: reftrack return:0-1+5-6+1-0: per frame not tracked, the start near a "
+            "reference: no start pose 3\n"
+            "desk: reftrack return:0-1+5-6+1-0: relocalisation attempts, what stopped each: PnP "
+            "inliers 2, verified 1; thread CPU per attempt with its verification: median 30.0 "
+            "ms\n");
+}
+
 TEST(GroundTruthBenchmarkReport, WritesTableCsvAndPlotIntoTheFolder) {
   const auto dir = test::freshTempDir("GroundTruthBenchmarkReport") / "out";
   const GroundTruthBenchmarkResult r = smallResult();

@@ -3,8 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <map>
 #include <opencv2/calib3d.hpp>
 #include <set>
+#include <utility>
 
 #include "ErrorMessage.hpp"
 #include "app/simulator/SceneSimulator.hpp"
@@ -276,6 +278,78 @@ TEST(GroundTruthBenchmark, CutsAndStridePlayOneSequence) {
     if (k % 3 != 0) {
       EXPECT_TRUE(std::isnan(stride.errorPx[static_cast<std::size_t>(k)])) << k;
     }
+}
+
+// A stand-in for a tracker that loses the mapped view (frames 0-9 of fourViews) and comes back:
+// in it, the true pose from its second frame on (the first is refused by the inlier spread);
+// elsewhere no pose (PnP inliers), except frame 22 where it gives frame 0's pose (wrong).
+class ReturningMethod final : public PoseMethod {
+ public:
+  explicit ReturningMethod(const GroundTruthSequence& s) : s_(s) {}
+  std::string name() const override { return "returning"; }
+  void startRun() override { inView_ = false; }
+  std::optional<RigidPose> locate(const cv::Mat& frame, std::string& reason) override {
+    const int k = frame.at<unsigned char>(0, 0);
+    const bool wasInView = std::exchange(inView_, k < 10);
+    start_ = search_ = RecoveryStage::None;
+    if (k == 22) return s_.truth[0];
+    if (k < 10 && wasInView) return s_.truth[static_cast<std::size_t>(k)];
+    start_ = RecoveryStage::StartNoPose;
+    search_ = k < 10 ? RecoveryStage::InlierSpread : RecoveryStage::PnpInliers;
+    reason = "lost";
+    return std::nullopt;
+  }
+  RecoveryStage lastStart() const override { return start_; }
+  RecoveryStage lastSearch() const override { return search_; }
+  double lastSearchCpuMs() const override { return 1.0; }
+
+ private:
+  const GroundTruthSequence& s_;
+  bool inView_ = false;
+  RecoveryStage start_ = RecoveryStage::None, search_ = RecoveryStage::None;
+};
+
+// return:0-4+20-24+4-0 plays frame 0-4 twice: each play is scored on its own, per range the
+// plays to the first pose within 5 px are counted, and the stops of every lost frame are counted
+// by stage (scored pass only).
+TEST(GroundTruthBenchmark, ReturnOrdersAreScoredPerPlayAndPerRange) {
+  const GroundTruthSequence s = fourViews();
+  const std::vector<Eigen::Vector3d> cube = cubeOn({0.16, -0.10, 0.0}, 0.1);
+  const std::vector<bool> truth(40, true);
+  MethodRun run = playedRun("return:0-4+20-24+4-0", 40);
+  ReturningMethod method(s);
+  playFrames(method, s, cube, true, run);
+  ASSERT_EQ(run.playedErrorPx.size(), 15u);
+  EXPECT_EQ(std::count(run.playedScored.begin(), run.playedScored.end(), true), 15);
+  EXPECT_TRUE(std::isnan(run.playedErrorPx[0]));
+  EXPECT_LT(run.playedErrorPx[1], 1e-9);
+  EXPECT_GT(run.playedErrorPx[7], kWrongPosePx);  // frame 22: frame 0's pose, 3 views off
+  EXPECT_TRUE(std::isnan(run.errorPx[4]));        // its last play (the return's first) has none
+  const MethodSummary sum = summarise(run, truth);
+  EXPECT_EQ(sum.frames, 15);
+  EXPECT_EQ(sum.posed, 9);
+  EXPECT_EQ(sum.wrong, 1);
+  const std::vector<RangeOutcome> ranges = rangeOutcomes(run, 20.0);
+  ASSERT_EQ(ranges.size(), 3u);
+  const int posed[] = {4, 1, 4}, within[] = {4, 0, 4}, wrong[] = {0, 1, 0}, k[] = {1, -1, 1};
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(ranges[i].frames, 5) << i;
+    EXPECT_EQ(ranges[i].posed, posed[i]) << i;
+    EXPECT_EQ(ranges[i].within, within[i]) << i;
+    EXPECT_EQ(ranges[i].wrong, wrong[i]) << i;
+    EXPECT_EQ(ranges[i].framesToReacquire, k[i]) << i;
+    EXPECT_FALSE(std::isnan(ranges[i].cpuMeanMs)) << i;
+  }
+  EXPECT_EQ(ranges[2].range, (FrameRange{4, 0}));
+  EXPECT_EQ(run.startStops, (std::map<std::string, int>{{"no start pose", 6}}));
+  EXPECT_EQ(run.searchStops,
+            (std::map<std::string, int>{{"inlier spread", 2}, {"PnP inliers", 4}}));
+  EXPECT_EQ(run.searchCpuMs, std::vector<double>(6, 1.0));
+  // A second (timing) pass counts no stops.
+  playFrames(method, s, cube, false, run);
+  EXPECT_EQ(run.searchStops.at("PnP inliers"), 4);
+  EXPECT_EQ(run.cpuMs.size(), 30u);
+  EXPECT_TRUE(rangeOutcomes(playedRun("sequence", 40), 20.0).empty());
 }
 
 // The predicted error's calibration over the posed frames with a true pose and a prediction:

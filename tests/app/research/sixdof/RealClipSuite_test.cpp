@@ -74,6 +74,33 @@ TEST(RealClipSuite, AValidSuiteParses) {
   EXPECT_EQ(suite.description, "suite S");
 }
 
+// A clip's own frame orders (orders:) replace the suite's for it; a return: order's ranges must
+// lie within the clip's frames, and no away:N (the suite has no other scene).
+TEST(RealClipSuite, AClipMayNameItsOwnOrders) {
+  const std::string range =
+      "name: a\n    folder: a\n    first_frame: 10\n    last_frame: 19\n    references: [10, "
+      "14]\n    cube: {edge: 0.1, base_centre: [0, 0, 0]}\n    wrong_px: 5\n";
+  const RealClipSuite suite =
+      parseRealClipSuite(oneClip(range + "    orders: [sequence, return:0-3+7-9+3-00]\n"), "S");
+  EXPECT_EQ(suite.clips[0].orders, (std::vector<std::string>{"sequence", "return:0-3+7-9+3-0"}));
+  EXPECT_TRUE(parseRealClipSuite(oneClip(kGood), "S").clips[0].orders.empty());
+  const auto refused = [](const std::string& text) {
+    return errorMessage([&] { parseRealClipSuite(text, "suite S"); });
+  };
+  std::string m = refused(oneClip(range + "    orders: [return:0-3+7-10+3-0]\n"));
+  EXPECT_NE(m.find("line 9: clips[0].orders: bench-real: --order: 'return:0-3+7-10+3-0': the "
+                   "range 7-10 reaches beyond the 10 frames"),
+            std::string::npos)
+      << m;
+  m = refused(oneClip(range + "    orders: [away:5]\n"));
+  EXPECT_NE(m.find("away:5: the suite plays no other scene (away:N)"), std::string::npos) << m;
+  m = refused(oneClip(range + "    orders: []\n"));
+  EXPECT_NE(m.find("clips[0].orders must be a list of one or more frame orders"), std::string::npos)
+      << m;
+  m = refused(oneClip(range + "    orders: [zigzag]\n"));
+  EXPECT_NE(m.find("unknown order 'zigzag'"), std::string::npos) << m;
+}
+
 // Every mistake is refused with the line it is on and what is wrong.
 TEST(RealClipSuite, ABadSuiteIsRefusedWithItsLine) {
   const auto refused = [](const std::string& text) {
