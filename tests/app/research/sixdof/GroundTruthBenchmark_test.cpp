@@ -288,6 +288,7 @@ class ReturningMethod final : public PoseMethod {
   explicit ReturningMethod(const GroundTruthSequence& s) : s_(s) {}
   std::string name() const override { return "returning"; }
   void startRun() override { inView_ = false; }
+  void coldStart() override { inView_ = false; }
   std::optional<RigidPose> locate(const cv::Mat& frame, std::string& reason) override {
     const int k = frame.at<unsigned char>(0, 0);
     const bool wasInView = std::exchange(inView_, k < 10);
