@@ -815,7 +815,9 @@ std::optional<PoseTracker::Impl::Inliers> PoseTracker::Impl::rejectOutliers(
       rvec = rSq;
       tvec = tSq;
     }
-    cv::solvePnPRefineLM(o, im, Kcv, cv::noArray(), rvec, tvec);
+    // ReprojectionRefiner, not cv::solvePnPRefineLM: the same minimum, and OpenCV's LM was
+    // 0.15 ms of the desk clip's 2.4 ms frame.
+    refineReprojection(o, im, Kcv, rvec, tvec);
   }
   // The pairs gated again at their own robust scale (pose.outlier_gate_sigmas), the linear pose
   // refitted to those within, twice (the gate tightened in between): the wide gate lets in wrong
@@ -845,9 +847,6 @@ std::optional<PoseTracker::Impl::Inliers> PoseTracker::Impl::rejectOutliers(
           im.push_back(image[i]);
         }
       if (static_cast<int>(o.size()) < limits.minInliers) break;
-      // Gauss-Newton in Eigen, not cv::solvePnPRefineLM: the same objective from a pose already
-      // refined on nearly the same pairs, and the two LM refits were 0.3 ms a frame on the desk
-      // clip (stage 7: 0.42 -> 0.73 ms).
       refineReprojection(o, im, Kcv, rvec, tvec);
       gate = tight;
     }

@@ -50,6 +50,22 @@ TEST(ReprojectionRefiner, ReachesTheMinimumOfOpenCvsLevenbergMarquardt) {
   EXPECT_LT(std::sqrt(sum / static_cast<double>(back.size())), 0.5);  // ~0.3 px noise x sqrt(2)
 }
 
+// From a start 9 degrees and 15 cm off (a poor RANSAC model), the refinement
+// still reaches OpenCV's minimum (1e-7: the looser start takes more of the 30 steps).
+TEST(ReprojectionRefiner, FromAFarStartStillReachesTheMinimum) {
+  const Scene s = noisyScene();
+  const cv::Vec3d r0 = s.rTrue + cv::Vec3d(0.12, -0.08, 0.06),
+                  t0 = s.tTrue + cv::Vec3d(0.10, -0.05, 0.10);
+  cv::Vec3d rLm = r0, tLm = t0;
+  cv::solvePnPRefineLM(
+      s.object, s.image, s.K, cv::noArray(), rLm, tLm,
+      cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 200, 1e-15));
+  cv::Vec3d r = r0, t = t0;
+  refineReprojection(s.object, s.image, s.K, r, t, 30);
+  EXPECT_LT(cv::norm(r - rLm), 1e-7);
+  EXPECT_LT(cv::norm(t - tLm), 1e-7);
+}
+
 // At the minimum no step lowers the error: nothing moves.
 TEST(ReprojectionRefiner, AtTheMinimumThePoseStaysPut) {
   const Scene s = noisyScene();
