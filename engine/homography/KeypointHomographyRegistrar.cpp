@@ -54,10 +54,26 @@ constexpr double kTiltDeg = 50.0;
 // img1 of bikes, leuven, trees, ubc and the box photo zoomed 1.4-3.6x with rotation: misses
 // at 3.0x and 3.6x where SIFT registers (README, homography cold registration).
 constexpr int kZoomFinerLevels = 4;
+// ORB only, the last resort when no view gives a homography: a frame zoomed in 5-7x on a small
+// part of the reference (ExtremeZoom of real-photo-pairs, 6.2x: a 176x116-pixel patch of the
+// 1090x722 working reference) finds few of the reference's keypoints where it looks: the 1000
+// strongest over the whole reference leave ~25 there. The reference is detected once more with
+// kDenseFeaturesFactor times the keypoints, and the frame at kDenseFrameScale of its working
+// scale (the 6x zoom then lies within ORB's 8 levels of 1.2, 3.6x). Measured on ExtremeZoom
+// (a prototype with OpenCV's brute-force matcher, mutual ratio-tested matches and RANSAC; inliers
+// / the keypoint H's mean error over the overlap): 1000 reference keypoints 5 / 630 px, 4000: 6
+// / 516 px, 10000: 10 / 21 px, 20000: 24 / 11 px (the frame at its working scale: 6 inliers; at a
+// quarter of it 17). Here: 21 inliers, registered 1.9 px from the given H after the alignment.
+constexpr int kDenseFeaturesFactor = 20;
+constexpr double kDenseFrameScale = 0.5;
+// Frame rows of the descriptor distances held at once by a pass that does not keep them (8 rows
+// of a 20000-keypoint view fit in the L2 cache: ExtremeZoom matched in 68 ms, 86 with 256 rows).
+constexpr int kDistanceBlockRows = 8;
 // The keypoint homography's area ratio (frame pixels per reference pixel, where its inliers lie)
-// must lie within [1 / kMaxAreaRatio, kMaxAreaRatio]: zooms to 6x (a 4x zoom seen at 40 degrees
-// has ~21; the tracker's min_determinant bound of 20 refused such views outright).
-constexpr double kMaxAreaRatio = 36.0;
+// must lie within [1 / kMaxAreaRatio, kMaxAreaRatio]: zooms to 8x (ExtremeZoom's 6.2x has 38, a
+// 4x zoom seen at 40 degrees ~21; the tracker's min_determinant bound of 20 refused such views
+// outright).
+constexpr double kMaxAreaRatio = 64.0;
 // The ratio test's rival: the nearest of the kNearest reference keypoints lying farther than
 // max(kDuplicateMinPx, kDuplicateSizeFraction * the keypoint's size) from the nearest.
 constexpr int kNearest = 4;
@@ -82,6 +98,23 @@ double workingScale(cv::Size size) {
   if (area < kMinDetectPixels) return std::min(kMaxUpsampling, std::sqrt(kMinDetectPixels / area));
   if (area > kMaxDetectPixels) return std::sqrt(kMaxDetectPixels / area);
   return 1.0;
+}
+
+// All the keypoints `detector` finds in `gray` resampled by `scale`, and their descriptors;
+// positions and sizes in `gray`'s pixels (pixel centres: x = (x_scaled + 0.5) / scale - 0.5).
+void detectAtScale(cv::Feature2D& detector, const cv::Mat& gray, double scale,
+                   std::vector<cv::KeyPoint>& keypoints, cv::Mat& descriptors) {
+  cv::Mat image = gray;
+  if (scale != 1.0)
+    cv::resize(gray, image, cv::Size(), scale, scale,
+               scale < 1.0 ? cv::INTER_AREA : cv::INTER_LINEAR);
+  detector.detectAndCompute(image, cv::noArray(), keypoints, descriptors);
+  if (scale != 1.0)
+    for (cv::KeyPoint& k : keypoints) {
+      k.pt.x = static_cast<float>((k.pt.x + 0.5) / scale - 0.5);
+      k.pt.y = static_cast<float>((k.pt.y + 0.5) / scale - 0.5);
+      k.size = static_cast<float>(k.size / scale);
+    }
 }
 
 // The affine map of the reference into a view tilted by tiltDeg across direction `angle`
@@ -115,6 +148,7 @@ KeypointHomographyRegistrar::KeypointHomographyRegistrar(const cv::Mat& referenc
   if (reference.empty()) throw Error("keypoint registrar: the reference image is empty");
   norm_ = params_.keypoints == KeypointLayer::Sift ? cv::NORM_L2 : cv::NORM_HAMMING;
   const cv::Mat gray = toGray8(reference);
+  if (params_.keypoints == KeypointLayer::Orb) referenceGray_ = gray.clone();
   views_.emplace_back();
   // The reference and its synthetic views at the reference's working scale (a tilted view's
   // smaller canvas is not upsampled: its compression is the point).
@@ -172,18 +206,8 @@ KeypointHomographyRegistrar::KeypointHomographyRegistrar(const cv::Mat& referenc
         static_cast<int>(std::lround(params_.keypointFeatures * std::pow(1.44, kZoomFinerLevels)));
     View zoom;
     // At the working scale, like every detection (a large reference reduced first).
-    const double s = referenceScale;
-    cv::Mat image = gray;
-    if (s != 1.0)
-      cv::resize(gray, image, cv::Size(), s, s, s < 1.0 ? cv::INTER_AREA : cv::INTER_LINEAR);
-    cv::ORB::create(features, 1.2f, 8 + kZoomFinerLevels, 31, kZoomFinerLevels)
-        ->detectAndCompute(image, cv::noArray(), zoom.keypoints, zoom.descriptors);
-    if (s != 1.0)
-      for (cv::KeyPoint& k : zoom.keypoints) {
-        k.pt.x = static_cast<float>((k.pt.x + 0.5) / s - 0.5);
-        k.pt.y = static_cast<float>((k.pt.y + 0.5) / s - 0.5);
-        k.size = static_cast<float>(k.size / s);
-      }
+    detectAtScale(*cv::ORB::create(features, 1.2f, 8 + kZoomFinerLevels, 31, kZoomFinerLevels),
+                  gray, referenceScale, zoom.keypoints, zoom.descriptors);
     if (static_cast<int>(zoom.keypoints.size()) >= ransac_.minInliers)
       views_.push_back(std::move(zoom));
   }
@@ -234,12 +258,31 @@ KeypointRegistration KeypointHomographyRegistrar::registerFrame(const cv::Mat& f
         registerToView(views_[v], gray, keypoints, descriptors, MatchPass::OneToOne, distances[v]);
     if (r.found && (!best.found || r.inliers > best.inliers)) best = std::move(r);
   }
+  if (!best.found && !referenceGray_.empty()) {
+    KeypointRegistration r = registerDense(gray);
+    if (r.found) best = std::move(r);
+  }
   return best;
+}
+
+KeypointRegistration KeypointHomographyRegistrar::registerDense(const cv::Mat& gray) const {
+  std::call_once(*denseOnce_, [&] {
+    // ORB's defaults, as for the reference itself, with more keypoints.
+    detectAtScale(*cv::ORB::create(params_.keypointFeatures * kDenseFeaturesFactor), referenceGray_,
+                  workingScale(referenceGray_.size()), dense_.keypoints, dense_.descriptors);
+  });
+  std::vector<cv::KeyPoint> keypoints;
+  cv::Mat descriptors;
+  detect(gray, kDenseFrameScale * params_.keypointDetectScale * workingScale(gray.size()),
+         keypoints, descriptors);
+  cv::Mat distance;
+  return registerToView(dense_, gray, keypoints, descriptors, MatchPass::Distinctive, distance,
+                        false);
 }
 
 KeypointRegistration KeypointHomographyRegistrar::registerToView(
     const View& view, const cv::Mat& gray, const std::vector<cv::KeyPoint>& keypoints,
-    const cv::Mat& descriptors, MatchPass pass, cv::Mat& distance) const {
+    const cv::Mat& descriptors, MatchPass pass, cv::Mat& distance, bool keepDistances) const {
   KeypointRegistration out;
   out.frameKeypoints = static_cast<int>(keypoints.size());
   if (static_cast<int>(keypoints.size()) < ransac_.minInliers || view.descriptors.empty()) {
@@ -251,8 +294,11 @@ KeypointRegistration KeypointHomographyRegistrar::registerToView(
   // reference keypoint (mutual check).
   // descriptorDistances, not cv::batchDistance: the same distances, and ORB's Hamming ones with
   // the CPU's popcount (this OpenCV's has none): the finer-level zoom view holds ~4x the keypoints.
-  if (distance.empty()) distance = descriptorDistances(descriptors, view.descriptors, norm_);
-  const int rows = distance.rows, cols = distance.cols;
+  if (distance.empty() && keepDistances)
+    distance = descriptorDistances(descriptors, view.descriptors, norm_);
+  const int rows = descriptors.rows, cols = view.descriptors.rows;
+  cv::Mat block;  // distances of frame rows [blockStart, blockStart + block.rows) when not kept
+  int blockStart = 0;
   std::vector<float> columnBest(static_cast<size_t>(cols), std::numeric_limits<float>::max());
   std::vector<int> columnArg(static_cast<size_t>(cols), -1);
   std::vector<int> rowArg(static_cast<size_t>(rows), -1);
@@ -262,7 +308,12 @@ KeypointRegistration KeypointHomographyRegistrar::registerToView(
   // the detector found twice at one place (two pyramid levels, or a tilted view) is no rival.
   std::array<std::pair<float, int>, kNearest> nearest;
   for (int r = 0; r < rows; ++r) {
-    const float* d = distance.ptr<float>(r);
+    if (distance.empty() && (block.empty() || r >= blockStart + block.rows)) {
+      blockStart = r;
+      block = descriptorDistances(descriptors.rowRange(r, std::min(rows, r + kDistanceBlockRows)),
+                                  view.descriptors, norm_);
+    }
+    const float* d = distance.empty() ? block.ptr<float>(r - blockStart) : distance.ptr<float>(r);
     nearest.fill({std::numeric_limits<float>::max(), -1});
     for (int c = 0; c < cols; ++c) {
       if (d[c] < nearest.back().first) {

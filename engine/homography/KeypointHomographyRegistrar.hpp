@@ -3,8 +3,11 @@
 // homography for cold registration — ORB / AKAZE / SIFT keypoints (the reference's detected once,
 // also on synthetic tilted views of it, ASIFT-like), mutual nearest-neighbour descriptor matches
 // passing Lowe's ratio test, and a RANSAC homography; failing a confident one, the mutual nearest
-// neighbours alone (one-to-one, for repeated patterns) with MAGSAC++. It only predicts:
-// HomographyTracker matches its correlation windows around this guess.
+// neighbours alone (one-to-one, for repeated patterns) with MAGSAC++; failing any (ORB), the
+// reference's keypoints detected densely, for frames zoomed far onto a part of it. It only
+// predicts: HomographyTracker matches its correlation windows around this guess.
+#include <memory>
+#include <mutex>
 #include <opencv2/core.hpp>
 #include <opencv2/features2d.hpp>
 #include <string>
@@ -54,11 +57,15 @@ class KeypointHomographyRegistrar {
   // OneToOne: mutual nearest neighbours alone, MAGSAC++ (cv::USAC_MAGSAC).
   enum class MatchPass { Distinctive, OneToOne };
   // Descriptor matching of the frame's keypoints to one view and its robust homography.
-  // distance: the frame x view descriptor distances, computed here when empty.
+  // distance: the frame x view descriptor distances, computed here when empty (kept for the
+  // next pass when keepDistances, else computed a block of frame rows at a time).
   KeypointRegistration registerToView(const View& view, const cv::Mat& gray,
                                       const std::vector<cv::KeyPoint>& keypoints,
-                                      const cv::Mat& descriptors, MatchPass pass,
-                                      cv::Mat& distance) const;
+                                      const cv::Mat& descriptors, MatchPass pass, cv::Mat& distance,
+                                      bool keepDistances = true) const;
+  // The last resort (ORB, nothing registered): the reference's keypoints detected densely
+  // (made on first use), matched to the frame's detected at half its working scale.
+  KeypointRegistration registerDense(const cv::Mat& gray) const;
 
   // Keypoints and descriptors of `gray`, detected at `scale` of its size (callers pass the image's
   // working scale: small images upsampled, large ones reduced; positions given in `gray`'s
@@ -71,6 +78,10 @@ class KeypointHomographyRegistrar {
   cv::Ptr<cv::Feature2D> detector_;
   int norm_ = cv::NORM_L2;
   std::vector<View> views_;
+  cv::Mat referenceGray_;  // kept for the dense view (ORB only)
+  // The dense view, made once on first use (registerFrame is const and may run on any thread).
+  mutable std::unique_ptr<std::once_flag> denseOnce_ = std::make_unique<std::once_flag>();
+  mutable View dense_;
 };
 
 }  // namespace reftrack
