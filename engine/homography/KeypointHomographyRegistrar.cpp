@@ -258,7 +258,9 @@ KeypointRegistration KeypointHomographyRegistrar::registerFrame(const cv::Mat& f
         registerToView(views_[v], gray, keypoints, descriptors, MatchPass::OneToOne, distances[v]);
     if (r.found && (!best.found || r.inliers > best.inliers)) best = std::move(r);
   }
-  if (!best.found && !referenceGray_.empty()) {
+  // (Not for a frame without texture to match: a black frame costs no dense view.)
+  if (!best.found && !referenceGray_.empty() &&
+      static_cast<int>(keypoints.size()) >= ransac_.minInliers) {
     KeypointRegistration r = registerDense(gray);
     if (r.found) best = std::move(r);
   }
