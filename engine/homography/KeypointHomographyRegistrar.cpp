@@ -100,21 +100,32 @@ double workingScale(cv::Size size) {
   return 1.0;
 }
 
+// `gray` resampled by `scale` (reduced by area, enlarged linearly; itself at 1).
+cv::Mat resampled(const cv::Mat& gray, double scale) {
+  if (scale == 1.0) return gray;
+  cv::Mat image;
+  cv::resize(gray, image, cv::Size(), scale, scale,
+             scale < 1.0 ? cv::INTER_AREA : cv::INTER_LINEAR);
+  return image;
+}
+
+// Keypoints found on an image resampled by `scale`, brought back to the original's pixels
+// (pixel centres: x = (x_scaled + 0.5) / scale - 0.5).
+void toOriginalPixels(std::vector<cv::KeyPoint>& keypoints, double scale) {
+  if (scale == 1.0) return;
+  for (cv::KeyPoint& k : keypoints) {
+    k.pt.x = static_cast<float>((k.pt.x + 0.5) / scale - 0.5);
+    k.pt.y = static_cast<float>((k.pt.y + 0.5) / scale - 0.5);
+    k.size = static_cast<float>(k.size / scale);
+  }
+}
+
 // All the keypoints `detector` finds in `gray` resampled by `scale`, and their descriptors;
-// positions and sizes in `gray`'s pixels (pixel centres: x = (x_scaled + 0.5) / scale - 0.5).
+// positions and sizes in `gray`'s pixels.
 void detectAtScale(cv::Feature2D& detector, const cv::Mat& gray, double scale,
                    std::vector<cv::KeyPoint>& keypoints, cv::Mat& descriptors) {
-  cv::Mat image = gray;
-  if (scale != 1.0)
-    cv::resize(gray, image, cv::Size(), scale, scale,
-               scale < 1.0 ? cv::INTER_AREA : cv::INTER_LINEAR);
-  detector.detectAndCompute(image, cv::noArray(), keypoints, descriptors);
-  if (scale != 1.0)
-    for (cv::KeyPoint& k : keypoints) {
-      k.pt.x = static_cast<float>((k.pt.x + 0.5) / scale - 0.5);
-      k.pt.y = static_cast<float>((k.pt.y + 0.5) / scale - 0.5);
-      k.size = static_cast<float>(k.size / scale);
-    }
+  detector.detectAndCompute(resampled(gray, scale), cv::noArray(), keypoints, descriptors);
+  toOriginalPixels(keypoints, scale);
 }
 
 // The affine map of the reference into a view tilted by tiltDeg across direction `angle`
@@ -216,18 +227,11 @@ KeypointHomographyRegistrar::KeypointHomographyRegistrar(const cv::Mat& referenc
 void KeypointHomographyRegistrar::detect(const cv::Mat& gray, double scale,
                                          std::vector<cv::KeyPoint>& keypoints,
                                          cv::Mat& descriptors) const {
-  cv::Mat image = gray;
-  if (scale < 1.0) cv::resize(gray, image, cv::Size(), scale, scale, cv::INTER_AREA);
-  if (scale > 1.0) cv::resize(gray, image, cv::Size(), scale, scale, cv::INTER_LINEAR);
+  const cv::Mat image = resampled(gray, scale);
   detector_->detect(image, keypoints);
   cv::KeyPointsFilter::retainBest(keypoints, params_.keypointFeatures);
   detector_->compute(image, keypoints, descriptors);
-  if (scale != 1.0)
-    for (cv::KeyPoint& k : keypoints) {  // pixel centres: x_full = (x_small + 0.5) / s - 0.5
-      k.pt.x = static_cast<float>((k.pt.x + 0.5) / scale - 0.5);
-      k.pt.y = static_cast<float>((k.pt.y + 0.5) / scale - 0.5);
-      k.size = static_cast<float>(k.size / scale);
-    }
+  toOriginalPixels(keypoints, scale);
 }
 
 KeypointRegistration KeypointHomographyRegistrar::registerFrame(const cv::Mat& frame) const {
@@ -246,7 +250,7 @@ KeypointRegistration KeypointHomographyRegistrar::registerFrame(const cv::Mat& f
   KeypointRegistration best;
   for (size_t v = 0; v < views_.size() && !confident(best); ++v) {
     KeypointRegistration r = registerToView(views_[v], gray, keypoints, descriptors,
-                                            MatchPass::Distinctive, distances[v]);
+                                            MatchPass::Distinctive, &distances[v]);
     if (v == 0 || (r.found && (!best.found || r.inliers > best.inliers))) best = std::move(r);
   }
   // A repeated pattern (bricks, tiles, windows) fails the ratio test at its true matches: the
@@ -255,7 +259,7 @@ KeypointRegistration KeypointHomographyRegistrar::registerFrame(const cv::Mat& f
   // scoring tolerates the many near-duplicate matches.
   for (size_t v = 0; v < views_.size() && !confident(best) && params_.keypointOneToOne; ++v) {
     KeypointRegistration r =
-        registerToView(views_[v], gray, keypoints, descriptors, MatchPass::OneToOne, distances[v]);
+        registerToView(views_[v], gray, keypoints, descriptors, MatchPass::OneToOne, &distances[v]);
     if (r.found && (!best.found || r.inliers > best.inliers)) best = std::move(r);
   }
   // (Not for a frame without texture to match: a black frame costs no dense view.)
@@ -277,29 +281,27 @@ KeypointRegistration KeypointHomographyRegistrar::registerDense(const cv::Mat& g
   cv::Mat descriptors;
   detect(gray, kDenseFrameScale * params_.keypointDetectScale * workingScale(gray.size()),
          keypoints, descriptors);
-  cv::Mat distance;
-  return registerToView(dense_, gray, keypoints, descriptors, MatchPass::Distinctive, distance,
-                        false);
+  return registerToView(dense_, gray, keypoints, descriptors, MatchPass::Distinctive, nullptr);
 }
 
 KeypointRegistration KeypointHomographyRegistrar::registerToView(
     const View& view, const cv::Mat& gray, const std::vector<cv::KeyPoint>& keypoints,
-    const cv::Mat& descriptors, MatchPass pass, cv::Mat& distance, bool keepDistances) const {
+    const cv::Mat& descriptors, MatchPass pass, cv::Mat* kept) const {
   KeypointRegistration out;
   out.frameKeypoints = static_cast<int>(keypoints.size());
   if (static_cast<int>(keypoints.size()) < ransac_.minInliers || view.descriptors.empty()) {
     out.failure = "only " + std::to_string(keypoints.size()) + " keypoints in the frame";
     return out;
   }
-  // All descriptor distances at once (frame rows x reference columns): the nearest reference
+  // The descriptor distances (frame rows x reference columns): the nearest reference
   // keypoints of each frame keypoint (ratio test) and the nearest frame keypoint of each
   // reference keypoint (mutual check).
   // descriptorDistances, not cv::batchDistance: the same distances, and ORB's Hamming ones with
   // the CPU's popcount (this OpenCV's has none): the finer-level zoom view holds ~4x the keypoints.
-  if (distance.empty() && keepDistances)
-    distance = descriptorDistances(descriptors, view.descriptors, norm_);
+  if (kept && kept->empty()) *kept = descriptorDistances(descriptors, view.descriptors, norm_);
   const int rows = descriptors.rows, cols = view.descriptors.rows;
-  cv::Mat block;  // distances of frame rows [blockStart, blockStart + block.rows) when not kept
+  // Without `kept`: the distances of frame rows [blockStart, blockStart + block.rows).
+  cv::Mat block;
   int blockStart = 0;
   std::vector<float> columnBest(static_cast<size_t>(cols), std::numeric_limits<float>::max());
   std::vector<int> columnArg(static_cast<size_t>(cols), -1);
@@ -310,12 +312,12 @@ KeypointRegistration KeypointHomographyRegistrar::registerToView(
   // the detector found twice at one place (two pyramid levels, or a tilted view) is no rival.
   std::array<std::pair<float, int>, kNearest> nearest;
   for (int r = 0; r < rows; ++r) {
-    if (distance.empty() && (block.empty() || r >= blockStart + block.rows)) {
+    if (!kept && (block.empty() || r >= blockStart + block.rows)) {
       blockStart = r;
       block = descriptorDistances(descriptors.rowRange(r, std::min(rows, r + kDistanceBlockRows)),
                                   view.descriptors, norm_);
     }
-    const float* d = distance.empty() ? block.ptr<float>(r - blockStart) : distance.ptr<float>(r);
+    const float* d = kept ? kept->ptr<float>(r) : block.ptr<float>(r - blockStart);
     nearest.fill({std::numeric_limits<float>::max(), -1});
     for (int c = 0; c < cols; ++c) {
       if (d[c] < nearest.back().first) {

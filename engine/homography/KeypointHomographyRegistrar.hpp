@@ -57,12 +57,12 @@ class KeypointHomographyRegistrar {
   // OneToOne: mutual nearest neighbours alone, MAGSAC++ (cv::USAC_MAGSAC).
   enum class MatchPass { Distinctive, OneToOne };
   // Descriptor matching of the frame's keypoints to one view and its robust homography.
-  // distance: the frame x view descriptor distances, computed here when empty (kept for the
-  // next pass when keepDistances, else computed a block of frame rows at a time).
+  // kept: the frame x view descriptor distances, computed here when empty and kept for the next
+  // pass; nullptr: computed a block of frame rows at a time and dropped (a large view).
   KeypointRegistration registerToView(const View& view, const cv::Mat& gray,
                                       const std::vector<cv::KeyPoint>& keypoints,
-                                      const cv::Mat& descriptors, MatchPass pass, cv::Mat& distance,
-                                      bool keepDistances = true) const;
+                                      const cv::Mat& descriptors, MatchPass pass,
+                                      cv::Mat* kept) const;
   // The last resort (ORB, nothing registered): the reference's keypoints detected densely
   // (made on first use), matched to the frame's detected at half its working scale.
   KeypointRegistration registerDense(const cv::Mat& gray) const;
