@@ -383,10 +383,9 @@ KeypointRegistration KeypointHomographyRegistrar::registerToView(
   }
   std::vector<uchar> mask;
   const double threshold = params_.keypointInlierThresholdPx * resolutionScale(gray.size());
-  const cv::Mat H =
-      cv::findHomography(src, dst, pass == MatchPass::OneToOne ? cv::USAC_MAGSAC : cv::RANSAC,
-                         threshold, mask, ransacIterations(out.matches, std::max(4, ransac_.minInliers)),
-                         kRansacConfidence);
+  const cv::Mat H = cv::findHomography(
+      src, dst, pass == MatchPass::OneToOne ? cv::USAC_MAGSAC : cv::RANSAC, threshold, mask,
+      ransacIterations(out.matches, std::max(4, ransac_.minInliers)), kRansacConfidence);
   if (H.empty()) {
     out.failure = "no keypoint homography";
     return out;
