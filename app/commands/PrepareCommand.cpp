@@ -138,11 +138,12 @@ void printPair(const ReferencePairReport& r, const std::vector<std::string>& nam
     std::printf(
         "%d + %d corners, %d candidate matches of %d pairs, kept %d (RMS %.3f px)%s; dropped: %d "
         "ambiguous, %d correlation peak off the corner, %d behind a camera, %d outside the depth "
-        "range, %d low parallax, %d large reprojection error\n",
+        "range, %d low parallax, %d large reprojection error, %d a look-alike on the epipolar "
+        "line\n",
         s.cornersA, s.cornersB, s.mutualMatches, s.candidatePairs, s.kept, s.reprojectionRmsPx,
         r.merged ? "" : ", too few to merge", s.droppedAmbiguous, s.droppedPeakOffset,
         s.droppedBehindCamera, s.droppedOutsideDepthRange, s.droppedLowParallax,
-        s.droppedReprojection);
+        s.droppedReprojection, s.droppedLineRival);
     if (s.poseFit)
       std::printf(
           "  poses against the images: %d probe pairs, %d fit the images' own relative pose "

@@ -93,6 +93,7 @@ void EpipolarMatcherParams::fields(Self& p, const Field& field) {
   field("max_depth_m", p.maxDepthMetres, DepthBeyond{p.minDepthMetres});
   field("min_parallax_deg", p.minParallaxDeg, Range{0.0, 90.0});
   field("max_reprojection_error_px", p.maxReprojectionErrorPx, Range{1e-3, 1000.0});
+  field("line_rival_lead", p.lineRivalLead, Range{-1.0, 2.0});
   field("probe_epipolar_distance_px", p.probeEpipolarDistancePx, Range{0.0, 1000.0});
   field("pose_disagreement_px", p.poseDisagreementPx, Range{0.0, 1000.0});
   field("pose_disagreement_ratio", p.poseDisagreementRatio, Range{1.0, 1000.0});
@@ -124,26 +125,22 @@ EpipolarGuidedMatcher::EpipolarGuidedMatcher(PinholeCamera camera, const RigidPo
   }
 }
 
-std::vector<cv::Matx22f> EpipolarGuidedMatcher::localMapsAtoB(const Eigen::Vector2d& pA,
-                                                              const Eigen::Vector3d& P) const {
+std::optional<cv::Matx22f> EpipolarGuidedMatcher::localMapAtoB(const Eigen::Vector2d& pA,
+                                                               const Eigen::Vector3d& P,
+                                                               std::size_t plane) const {
   const Eigen::Matrix3d& K = camera_.K();
-  const Eigen::Matrix3d Kinv = K.inverse();
-  const Eigen::Vector3d ray = P.normalized();
-  std::vector<cv::Matx22f> maps;
-  for (const Eigen::Vector3d& n : planeNormalsA_) {
-    // A plane seen almost edge-on maps the window to a sliver: no useful hypothesis.
-    if (std::abs(n.dot(ray)) < kMinPlaneCosine) continue;
-    // Homography of the plane n^T X = n^T P (camera A) from A to B: K (R + t n^T / d) K^-1.
-    const Eigen::Matrix3d H =
-        K * (T_AB_.rotation() + T_AB_.translation() * n.transpose() / n.dot(P)) * Kinv;
-    const Eigen::Vector3d q = H * pA.homogeneous();
-    const Eigen::Vector2d image = q.head<2>() / q.z();
-    // Jacobian of p -> (H p)_xy / (H p)_z at pA.
-    const Eigen::Matrix2d J = (H.topLeftCorner<2, 2>() - image * H.block<1, 2>(2, 0)) / q.z();
-    maps.emplace_back(static_cast<float>(J(0, 0)), static_cast<float>(J(0, 1)),
-                      static_cast<float>(J(1, 0)), static_cast<float>(J(1, 1)));
-  }
-  return maps;
+  const Eigen::Vector3d& n = planeNormalsA_[plane];
+  // A plane seen almost edge-on maps the window to a sliver: no useful hypothesis.
+  if (std::abs(n.dot(P.normalized())) < kMinPlaneCosine) return std::nullopt;
+  // Homography of the plane n^T X = n^T P (camera A) from A to B: K (R + t n^T / d) K^-1.
+  const Eigen::Matrix3d H =
+      K * (T_AB_.rotation() + T_AB_.translation() * n.transpose() / n.dot(P)) * K.inverse();
+  const Eigen::Vector3d q = H * pA.homogeneous();
+  const Eigen::Vector2d image = q.head<2>() / q.z();
+  // Jacobian of p -> (H p)_xy / (H p)_z at pA.
+  const Eigen::Matrix2d J = (H.topLeftCorner<2, 2>() - image * H.block<1, 2>(2, 0)) / q.z();
+  return cv::Matx22f(static_cast<float>(J(0, 0)), static_cast<float>(J(0, 1)),
+                     static_cast<float>(J(1, 0)), static_cast<float>(J(1, 1)));
 }
 
 double EpipolarGuidedMatcher::epipolarDistance(const Eigen::Vector2d& pA,
@@ -160,6 +157,7 @@ struct ScoredCandidate {
   int a, b;
   float score;
   cv::Matx22f map;
+  std::size_t plane;  // index of the plane hypothesis (EpipolarGuidedMatcher::planeNormalsA_)
 };
 
 // Mutual best pairs (score >= minScore) among the candidates `admitted` lets through, with the
@@ -168,6 +166,7 @@ struct MutualSelection {
   std::vector<int> bestOfA, bestOfB;
   std::vector<float> bestScoreA, bestScoreB, secondScoreA, secondScoreB;
   std::vector<cv::Matx22f> bestMapA;
+  std::vector<std::size_t> bestPlaneA;
 };
 
 template <class Admit>
@@ -181,6 +180,7 @@ MutualSelection selectMutual(const std::vector<ScoredCandidate>& candidates, int
   s.secondScoreA.assign(static_cast<std::size_t>(nA), -2.0f);
   s.secondScoreB.assign(static_cast<std::size_t>(nB), -2.0f);
   s.bestMapA.assign(static_cast<std::size_t>(nA), cv::Matx22f::eye());
+  s.bestPlaneA.assign(static_cast<std::size_t>(nA), 0);
   const auto offer = [](float score, int other, int& best, float& bestScore, float& second) {
     if (score > bestScore) {
       second = bestScore;
@@ -195,7 +195,10 @@ MutualSelection selectMutual(const std::vector<ScoredCandidate>& candidates, int
     if (!admitted(c)) continue;
     ++admittedCount;
     const std::size_t a = static_cast<std::size_t>(c.a), b = static_cast<std::size_t>(c.b);
-    if (c.score > s.bestScoreA[a]) s.bestMapA[a] = c.map;
+    if (c.score > s.bestScoreA[a]) {
+      s.bestMapA[a] = c.map;
+      s.bestPlaneA[a] = c.plane;
+    }
     offer(c.score, c.b, s.bestOfA[a], s.bestScoreA[a], s.secondScoreA[a]);
     offer(c.score, c.a, s.bestOfB[b], s.bestScoreB[b], s.secondScoreB[b]);
   }
@@ -247,19 +250,26 @@ EpipolarMatchResult EpipolarGuidedMatcher::match(const cv::Mat& grayA,
       if (d > band) continue;
       const Eigen::Vector3d P = triangulator.linear(uA[a], uB[b]);
       if (!inDepthRange(P, T_AB_)) continue;
-      const std::vector<cv::Matx22f> maps = localMapsAtoB(uA[a], P);
+      std::vector<cv::Matx22f> maps;
+      std::vector<std::size_t> planes;
+      for (std::size_t plane = 0; plane < planeNormalsA_.size(); ++plane)
+        if (const std::optional<cv::Matx22f> map = localMapAtoB(uA[a], P, plane)) {
+          maps.push_back(*map);
+          planes.push_back(plane);
+        }
+      if (maps.empty()) continue;
       const NccPatches warpedB = NccPatches::warped(
           grayB, std::vector<cv::Point2f>(maps.size(), cornersB[b]), maps, params_.halfWindow);
       float score = -1.0f;
-      int bestHypothesis = 0;
+      std::size_t bestHypothesis = 0;
       for (int h = 0; h < warpedB.size(); ++h) {
         const float sh = patchesA.score(a, warpedB, h);
         if (sh > score) {
           score = sh;
-          bestHypothesis = h;
+          bestHypothesis = static_cast<std::size_t>(h);
         }
       }
-      candidates.push_back({a, b, score, maps[static_cast<size_t>(bestHypothesis)]});
+      candidates.push_back({a, b, score, maps[bestHypothesis], planes[bestHypothesis]});
       givenDistance.push_back(d);
     }
   }
@@ -349,6 +359,87 @@ EpipolarMatchResult EpipolarGuidedMatcher::match(const cv::Mat& grayA,
       candidates, nA, nB, [&](const ScoredCandidate& c) { return admit[candidateIndex(c)] != 0; },
       stats.candidatePairs);
 
+  // A look-alike of A's corner elsewhere on B's epipolar line, where B's detector may have found
+  // no corner (an AprilTag's corners): the profile of A's window (plane hypothesis `plane`) along
+  // the line within the depth range and the image, at 1 px steps; true when a local maximum more
+  // than kLineRivalClearancePx from the match's peak pB scores lineRivalLead or more above the
+  // profile's best near pB.
+  const double sampleStepPx = 1.0;
+  const auto lineRival = [&](int a, std::size_t plane, const Eigen::Vector2d& pB) {
+    const Eigen::Vector3d ray = camera_.K().inverse() * uA[a].homogeneous();  // z = 1
+    // Depths (camera A's z) whose point lies in front of B: a half-line.
+    double zNear = params_.minDepthMetres, zFar = params_.maxDepthMetres;
+    const double slope = (searchT_AB.rotation() * ray).z(), offset = searchT_AB.translation().z();
+    constexpr double kMinDepthB = 1e-3;
+    if (std::abs(slope) > 1e-12) {
+      const double z0 = (kMinDepthB - offset) / slope;
+      if (slope > 0.0)
+        zNear = std::max(zNear, z0);
+      else
+        zFar = std::min(zFar, z0);
+    } else if (offset <= kMinDepthB) {
+      return false;
+    }
+    if (zNear >= zFar) return false;
+    Eigen::Vector2d e0 = camera_.project(searchT_AB * (ray * zFar));
+    Eigen::Vector2d e1 = camera_.project(searchT_AB * (ray * zNear));
+    // Clip the segment e0-e1 to the image (Liang-Barsky).
+    const Eigen::Vector2d d = e1 - e0;
+    double t0 = 0.0, t1 = 1.0;
+    const double lo[2] = {0.0, 0.0};
+    const double hi[2] = {camera_.imageSize().width - 1.0, camera_.imageSize().height - 1.0};
+    for (int axis = 0; axis < 2; ++axis) {
+      if (std::abs(d[axis]) < 1e-12) {
+        if (e0[axis] < lo[axis] || e0[axis] > hi[axis]) return false;
+        continue;
+      }
+      double ta = (lo[axis] - e0[axis]) / d[axis], tb = (hi[axis] - e0[axis]) / d[axis];
+      if (ta > tb) std::swap(ta, tb);
+      t0 = std::max(t0, ta);
+      t1 = std::min(t1, tb);
+    }
+    if (t0 >= t1) return false;
+    const Eigen::Vector2d start = e0 + t0 * d, end = e0 + t1 * d;
+    const double length = (end - start).norm();
+    if (length < 1.0) return false;
+    const Eigen::Vector2d step = (end - start) / length * sampleStepPx;
+    const int samples = static_cast<int>(length / sampleStepPx) + 1;
+    std::vector<cv::Point2f> centres;
+    std::vector<cv::Matx22f> maps;
+    std::vector<int> at;  // sample index of each window
+    for (int i = 0; i < samples; ++i) {
+      const Eigen::Vector2d u = start + i * step;
+      const Eigen::Vector3d P = searchTriangulator.linear(uA[a], u);
+      if (!P.allFinite() || P.z() <= 0.0) continue;
+      const std::optional<cv::Matx22f> map = localMapAtoB(uA[a], P, plane);
+      if (!map) continue;
+      const Eigen::Vector2d pixel = camera_.projectDistorted(searchT_AB * P);
+      centres.emplace_back(static_cast<float>(pixel.x()), static_cast<float>(pixel.y()));
+      maps.push_back(*map);
+      at.push_back(i);
+    }
+    std::vector<float> profile(static_cast<std::size_t>(samples), -1.0f);
+    const NccPatches windows = NccPatches::warped(grayB, centres, maps, params_.halfWindow);
+    for (int k = 0; k < windows.size(); ++k)
+      profile[static_cast<std::size_t>(at[static_cast<std::size_t>(k)])] =
+          patchesA.score(a, windows, k);
+    const double along = (pB - start).dot(step) / step.squaredNorm();
+    const int clearance = static_cast<int>(std::ceil(kLineRivalClearancePx / sampleStepPx));
+    float own = -1.0f, rival = -1.0f;
+    for (int i = 0; i < samples; ++i) {
+      const float si = profile[static_cast<std::size_t>(i)];
+      if (std::abs(i - along) <= clearance) {
+        own = std::max(own, si);
+        continue;
+      }
+      const bool peak = (i == 0 || si >= profile[static_cast<std::size_t>(i - 1)]) &&
+                        (i + 1 == samples || si >= profile[static_cast<std::size_t>(i + 1)]);
+      if (peak) rival = std::max(rival, si);
+    }
+    if (own <= -1.0f) return false;  // pB is not on the sampled line: nothing to compare
+    return rival > -1.0f && rival - own >= params_.lineRivalLead;
+  };
+
   const double minParallax = params_.minParallaxDeg * kPi / 180.0;
   double squaredSum = 0.0;
   for (int a = 0; a < nA; ++a) {
@@ -394,6 +485,10 @@ EpipolarMatchResult EpipolarGuidedMatcher::match(const cv::Mat& grayA,
     if (std::max(searchTriangulator.reprojectionErrorA(S, uA[a]),
                  searchTriangulator.reprojectionErrorB(S, pB)) > params_.maxReprojectionErrorPx) {
       ++stats.droppedReprojection;
+      continue;
+    }
+    if (params_.lineRivalLead < 2.0 && lineRival(a, sel.bestPlaneA[ia], pB)) {
+      ++stats.droppedLineRival;
       continue;
     }
     const Eigen::Vector3d P =

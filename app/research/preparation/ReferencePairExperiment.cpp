@@ -255,10 +255,11 @@ void runReferencePairExperiment(const ReferencePairExperimentOptions& o) {
     const EpipolarMatchStats& s = r.matching;
     std::printf(
         "prepare: %d + %d corners, %d candidate pairs, %d mutual, kept %d (RMS %.3f px); dropped "
-        "%d ambiguous, %d peak off the corner, %d behind, %d depth, %d parallax, %d reprojection\n",
+        "%d ambiguous, %d peak off the corner, %d behind, %d depth, %d parallax, %d reprojection, "
+        "%d look-alike on the line\n",
         s.cornersA, s.cornersB, s.candidatePairs, s.mutualMatches, s.kept, s.reprojectionRmsPx,
         s.droppedAmbiguous, s.droppedPeakOffset, s.droppedBehindCamera, s.droppedOutsideDepthRange,
-        s.droppedLowParallax, s.droppedReprojection);
+        s.droppedLowParallax, s.droppedReprojection, s.droppedLineRival);
     if (s.poseFit)
       std::printf(
           "  probe: %d pairs, %d fit the images' pose (rotation %.2f deg, translation direction "
