@@ -104,10 +104,22 @@ TEST_F(ExtendCommandTest, AddsReferencesWhereTheOrbitLeavesTheMapAtTheirTruePose
   EXPECT_NE(run.out.find("wrote " + out.string()), std::string::npos);
 }
 
-TEST_F(ExtendCommandTest, BadArgumentsAreUsageErrorsAndBadInputIsNamed) {
+// Its own small map (4 frames at 320x240: ~2 s) rather than the orbit's (CTest runs each test in
+// a process of its own, so a shared suite's set-up, ~28 s, is paid by every test of it).
+TEST(ExtendCommandErrors, BadArgumentsAreUsageErrorsAndBadInputIsNamed) {
   const fs::path dir = freshTempDir("ExtendCommand_errors");
-  const std::string map = (*dir_ / "map").string();
-  const std::string frames = (*dir_ / "sim" / "frames").string();
+  const CommandRun sim = runReftrack(
+      "simulate --preset orbit --frames 4 --size 320x240 --out " + (dir / "sim").string(), dir);
+  ASSERT_EQ(sim.exitCode, 0) << sim.err;
+  const fs::path s = dir / "sim";
+  const CommandRun prep = runReftrack(
+      "prepare --camera " + (s / "camera.yml").string() + " --ref-a " +
+          (s / "reference_a.png").string() + " --ref-b " + (s / "reference_b.png").string() +
+          " --poses " + (s / "references.txt").string() + " --out " + (dir / "map").string(),
+      dir);
+  ASSERT_EQ(prep.exitCode, 0) << prep.err;
+  const std::string map = (dir / "map").string();
+  const std::string frames = (s / "frames").string();
   // Usage errors: exit 2.
   EXPECT_EQ(
       runReftrack("extend --input " + frames + " --out " + (dir / "o").string(), dir).exitCode, 2);
