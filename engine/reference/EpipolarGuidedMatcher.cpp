@@ -114,6 +114,7 @@ EpipolarGuidedMatcher::EpipolarGuidedMatcher(PinholeCamera camera, const RigidPo
         "there are no epipolar lines to match along");
 
   F_ = fundamentalMatrix(camera_.K(), T_AB_);
+  Kinv_ = camera_.K().inverse();
 
   planeNormalsA_.push_back(Eigen::Vector3d::UnitZ());  // fronto-parallel
   planeNormalsA_.push_back(T_A.rotation().col(2));     // the world's z = 0 plane
@@ -134,7 +135,7 @@ std::optional<cv::Matx22f> EpipolarGuidedMatcher::localMapAtoB(const Eigen::Vect
   if (std::abs(n.dot(P.normalized())) < kMinPlaneCosine) return std::nullopt;
   // Homography of the plane n^T X = n^T P (camera A) from A to B: K (R + t n^T / d) K^-1.
   const Eigen::Matrix3d H =
-      K * (T_AB_.rotation() + T_AB_.translation() * n.transpose() / n.dot(P)) * K.inverse();
+      K * (T_AB_.rotation() + T_AB_.translation() * n.transpose() / n.dot(P)) * Kinv_;
   const Eigen::Vector3d q = H * pA.homogeneous();
   const Eigen::Vector2d image = q.head<2>() / q.z();
   // Jacobian of p -> (H p)_xy / (H p)_z at pA.
@@ -366,7 +367,7 @@ EpipolarMatchResult EpipolarGuidedMatcher::match(const cv::Mat& grayA,
   // profile's best near pB.
   const double sampleStepPx = 1.0;
   const auto lineRival = [&](int a, std::size_t plane, const Eigen::Vector2d& pB) {
-    const Eigen::Vector3d ray = camera_.K().inverse() * uA[a].homogeneous();  // z = 1
+    const Eigen::Vector3d ray = Kinv_ * uA[a].homogeneous();  // z = 1
     // Depths (camera A's z) whose point lies in front of B: a half-line.
     double zNear = params_.minDepthMetres, zFar = params_.maxDepthMetres;
     const double slope = (searchT_AB.rotation() * ray).z(), offset = searchT_AB.translation().z();

@@ -133,10 +133,8 @@ class EpipolarGuidedMatcher {
   double epipolarDistance(const Eigen::Vector2d& pA, const Eigen::Vector2d& pB) const;
 
  private:
-  // Local linear maps (window offsets in A -> offsets in B) at undistorted pA for each plane
-  // hypothesis through the point P (camera A's frame).
-  std::vector<cv::Matx22f> localMapsAtoB(const Eigen::Vector2d& pA, const Eigen::Vector3d& P) const;
-  // The same for plane hypothesis `plane` only; nullopt when that plane is seen almost edge-on.
+  // Local linear map (window offsets in A -> offsets in B) at undistorted pA for plane hypothesis
+  // `plane` through the point P (camera A's frame); nullopt when that plane is seen almost edge-on.
   std::optional<cv::Matx22f> localMapAtoB(const Eigen::Vector2d& pA, const Eigen::Vector3d& P,
                                           std::size_t plane) const;
 
@@ -144,6 +142,7 @@ class EpipolarGuidedMatcher {
   RigidPose T_AB_;
   Params params_;
   Eigen::Matrix3d F_;
+  Eigen::Matrix3d Kinv_;  // K^-1, for every plane hypothesis and epipolar-line sample
   std::vector<Eigen::Vector3d> planeNormalsA_;  // unit normals of the plane hypotheses, frame A
 };
 

@@ -283,9 +283,9 @@ TEST(EpipolarMatcherParams, CheckNamesTheBadFieldAndYamlRoundTrips) {
 }
 
 TEST(EpipolarGuidedMatcher, ALookAlikeAlongTheLineWhereBFoundNoCornerIsDropped) {
-  // A textured tile at world x = -0.18..-0.10 m (seen by both views) and its copy at -0.42..-0.34
+  // A textured tile at world x = -0.18..-0.12 m (seen by both views) and its copy at -0.61..-0.55
   // (outside A's view, inside B's), the baseline along x: B's copy lies on the epipolar lines of
-  // A's corners of the tile, at about 0.55 m of depth instead of the plane's 1 m (a board's look-
+  // A's corners of the tile, at about 0.4 m of depth instead of the plane's 1 m (a board's look-
   // alike tag corner).
   PlanarTestScene scene;
   const cv::Mat tile = scene.texture(cv::Rect(200, 200, 60, 60)).clone();
@@ -302,7 +302,7 @@ TEST(EpipolarGuidedMatcher, ALookAlikeAlongTheLineWhereBFoundNoCornerIsDropped) 
     const Eigen::Vector3d q = H * Eigen::Vector3d(a.x, a.y, 1.0);
     return Eigen::Vector2d(q.x() / q.z(), q.y() / q.z());
   };
-  // B's detector misses the true places of the tile's corners (in A: x 211-259, y 215-263);
+  // B's detector misses the true places of the tile's corners (in A: x 212-248, y 216-252);
   // its copy's corners remain.
   const auto inTile = [](const cv::Point2f& a) {
     return a.x > 209 && a.x < 250 && a.y > 213 && a.y < 254;
