@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets of tests/fuzz (clang, AddressSanitizer + UndefinedBehaviorSanitizer,
-# own build folder) and runs each for SECONDS (default 60) from its seed corpus in
+# own build folder) and runs each for SECONDS (default 60; as many targets at a time as cores,
+# REFTRACK_FUZZ_JOBS) from its seed corpus in
 # tests/fuzz/corpus/<target>/. Prints the executions, their rate and the slowest input of the
 # corpus it grew (each replayed once afterwards: ms in the instrumented build) per target; exits 1
 # on any crash, hang
@@ -30,22 +31,24 @@ if [ ${#targets[@]} -eq 0 ]; then
   for dir in "$root"/tests/fuzz/corpus/*/; do targets+=("fuzz_$(basename "$dir")"); done
 fi
 
-failed=()
-printf '%-26s %12s %10s %11s %s\n' target executions exec/s slowest/ms result
-for target in "${targets[@]}"; do
+# One target: fuzzes it, replays its grown corpus, writes its table row to $build/$target.row and
+# exits 1 when it failed.
+run_target() {
+  local target="$1" name corpus artifacts log result slow runs rate warmup slowest
   name="${target#fuzz_}"
   corpus="$build/corpus/$name"       # grows as the fuzzer finds new inputs; seeds stay clean
   artifacts="$build/artifacts/$name/"
   mkdir -p "$corpus" "$artifacts"
   log="$build/$target.log"
   result=ok
+  local status=0
   if ! ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
     "$build/tests/fuzz/$target" "$corpus" "$root/tests/fuzz/corpus/$name" \
     -max_total_time="$seconds" -timeout="${REFTRACK_FUZZ_TIMEOUT:-1}" -report_slow_units=1 \
     -rss_limit_mb=2048 -print_final_stats=1 \
     -artifact_prefix="$artifacts" ${REFTRACK_FUZZ_RUNS:+-runs="$REFTRACK_FUZZ_RUNS"} >"$log" 2>&1; then
     result="FAILED (see $log and $artifacts)"
-    failed+=("$target")
+    status=1
   fi
   slow=$(find "$artifacts" -name 'slow-unit-*' | wc -l)
   [ "$slow" -eq 0 ] || result="$result ($slow slow unit(s) > 1 s in $artifacts: replay them)"
@@ -53,11 +56,35 @@ for target in "${targets[@]}"; do
   rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log" | tail -1)
   # Each input of the grown corpus once more, timed by libFuzzer ("Executed FILE in N ms"); a seed
   # runs first in each process and is not counted (the first input pays one-time set-up).
-  warmup=$(find "$root/tests/fuzz/corpus/$name" -type f | sort | head -1)
+  warmup=$(find "$root/tests/fuzz/corpus/$name" -type f | sort | head -1) || true
   slowest=$(find "$corpus" -type f -print0 |
     xargs -0 -r -n 500 "$build/tests/fuzz/$target" "$warmup" 2>&1 | grep -vF "Executed $warmup " |
     sed -n 's/^Executed .* in \([0-9]*\) ms$/\1/p' | sort -n | tail -1) || true
-  printf '%-26s %12s %10s %11s %s\n' "$target" "${runs:-?}" "${rate:-?}" "${slowest:-?}" "$result"
+  printf '%-26s %12s %10s %11s %s\n' "$target" "${runs:-?}" "${rate:-?}" "${slowest:-?}" "$result" \
+    >"$build/$target.row"
+  return "$status"
+}
+
+# As many targets at a time as there are cores (REFTRACK_FUZZ_JOBS): each fuzzer is one process,
+# so on 2 cores the ten targets take half the wall time for the same seconds each.
+jobs_max="${REFTRACK_FUZZ_JOBS:-$(nproc)}"
+for target in "${targets[@]}"; do
+  rm -f "$build/$target.row"
+  while [ "$(jobs -rp | wc -l)" -ge "$jobs_max" ]; do wait -n || true; done
+  run_target "$target" &
+done
+wait || true
+
+failed=()
+printf '%-26s %12s %10s %11s %s\n' target executions exec/s slowest/ms result
+for target in "${targets[@]}"; do
+  if [ -f "$build/$target.row" ]; then
+    cat "$build/$target.row"
+    grep -q ' FAILED ' "$build/$target.row" && failed+=("$target")
+  else
+    printf '%-26s %12s %10s %11s %s\n' "$target" ? ? ? "FAILED (no result: see $build/$target.log)"
+    failed+=("$target")
+  fi
 done
 
 if [ ${#failed[@]} -ne 0 ]; then
