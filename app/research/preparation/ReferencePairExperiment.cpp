@@ -15,6 +15,7 @@
 #include "engine/matching/NccCorrelation.hpp"
 #include "engine/reference/MultiReferencePreparer.hpp"
 #include "engine/reference/TwoViewTriangulator.hpp"
+#include "engine/tracking/MultiReferenceTracker.hpp"
 
 namespace reftrack::app {
 
@@ -142,6 +143,92 @@ std::vector<double> offsetsInFrame(const PinholeCamera& camera, const std::vecto
     offsets.push_back(std::hypot(ox, oy));
   }
   return offsets;
+}
+
+// 4. The tracker (default parameters, the map above) run over the frames in order up to the last
+// check frame; at each check frame, its inlier measurements against the truth: the frame corner of
+// each inlier with a map point against that point's projection under the true pose (what the
+// measurement gets wrong whatever the estimator does) and under the tracker's pose (its residual).
+void reportTrackerMeasurements(const GroundTruthSequence& seq, const MultiReferenceMap& map,
+                               const std::vector<int>& checkFrames) {
+  const PinholeCamera& camera = seq.camera;
+  const int last = *std::max_element(checkFrames.begin(), checkFrames.end());
+  MultiReferenceTracker tracker(map, TrackerParams{});
+  std::printf(
+      "the tracker (default parameters) over frames 0-%d in order; its inliers' frame corners "
+      "against their map points' projections at each check frame:\n",
+      last);
+  for (int k = 0; k <= last; ++k) {
+    const MultiReferenceResult m = tracker.process(seq.frames[static_cast<std::size_t>(k)]);
+    if (std::find(checkFrames.begin(), checkFrames.end(), k) == checkFrames.end()) continue;
+    const PoseTrackingResult& r = m.tracking;
+    const std::optional<RigidPose>& truth = seq.truth[static_cast<std::size_t>(k)];
+    if (r.state != TrackingState::Tracking || !r.worldToCamera || !truth) {
+      std::printf("frame %d: no pose (%s)\n", k, r.message.c_str());
+      continue;
+    }
+    struct Measured {
+      double toTruth, toEstimate;
+      cv::Point2f pixel;
+      char side;
+    };
+    std::vector<Measured> measured;
+    int withoutPoint = 0;
+    const auto collect = [&](int view, const std::vector<std::pair<cv::Point2f, cv::Point2f>>& in,
+                             char side) {
+      for (const auto& [framePixel, referencePixel] : in) {
+        const MapPoint* found = nullptr;
+        for (const MapPoint& p : map.points) {
+          for (const PointObservation& ob : p.observations) {
+            if (ob.view != view) continue;
+            const cv::Point2f c = map.views[static_cast<std::size_t>(view)]
+                                      .corners[static_cast<std::size_t>(ob.corner)]
+                                      .pixel;
+            if (std::hypot(c.x - referencePixel.x, c.y - referencePixel.y) < 1e-3) found = &p;
+          }
+          if (found) break;
+        }
+        if (!found) {
+          ++withoutPoint;
+          continue;
+        }
+        const Eigen::Vector2d f(framePixel.x, framePixel.y);
+        measured.push_back({(f - camera.projectDistorted(*truth * found->world)).norm(),
+                            (f - camera.projectDistorted(*r.worldToCamera * found->world)).norm(),
+                            framePixel, side});
+      }
+    };
+    collect(m.referenceA, r.inliersA, 'A');
+    collect(m.referenceB, r.inliersB, 'B');
+    std::vector<double> toTruth, toEstimate;
+    for (const Measured& d : measured) {
+      toTruth.push_back(d.toTruth);
+      toEstimate.push_back(d.toEstimate);
+    }
+    // How far the tracker's pose moves the map's points from where the truth puts them.
+    std::vector<double> poseShift;
+    for (const MapPoint& p : map.points) {
+      const Eigen::Vector3d a = *truth * p.world, b = *r.worldToCamera * p.world;
+      if (a.z() > 0 && b.z() > 0)
+        poseShift.push_back((camera.projectDistorted(a) - camera.projectDistorted(b)).norm());
+    }
+    std::printf(
+        "frame %d: %zu inliers with a map point (%d without); corner to true projection median "
+        "%.2f px, p90 %.2f, > 1 px %.0f, > 2 px %.0f; to the tracker's projection median %.2f; the "
+        "tracker's pose moves the map points a median %.2f px from the truth\n",
+        k, measured.size(), withoutPoint, quantile(toTruth, 0.5), quantile(toTruth, 0.9),
+        static_cast<double>(measured.size()) * (1.0 - shareBelow(toTruth, 1.0)),
+        static_cast<double>(measured.size()) * (1.0 - shareBelow(toTruth, 2.0)),
+        quantile(toEstimate, 0.5), quantile(poseShift, 0.5));
+    std::sort(measured.begin(), measured.end(),
+              [](const Measured& a, const Measured& b) { return a.toTruth > b.toTruth; });
+    for (std::size_t i = 0; i < measured.size() && i < 4 && measured[i].toTruth > 1.0; ++i)
+      std::printf(
+          "  off the truth: corner (%.1f, %.1f) to reference %c, %.2f px (%.2f px from the "
+          "tracker's projection)\n",
+          measured[i].pixel.x, measured[i].pixel.y, measured[i].side, measured[i].toTruth,
+          measured[i].toEstimate);
+  }
 }
 
 }  // namespace
@@ -317,6 +404,7 @@ void runReferencePairExperiment(const ReferencePairExperimentOptions& o) {
                 missedSift);
     printDistribution("offset of the SIFT points' peaks from their projections", allSift);
     std::printf("  > 5 px: %.1f%%\n", 100.0 * (1.0 - shareBelow(allSift, 5.0)));
+    reportTrackerMeasurements(seq, map, o.checkFrames);
   }
 }
 

@@ -10,7 +10,10 @@
 //    frame and the reference window of its first observation, warped by the point's
 //    fronto-parallel plane, is searched within +-searchRadiusPx of the projection (warped NCC);
 //    the offset of the peak is the point's error there (as far as the ground truth allows: the
-//    same measure on points triangulated from the SIFT matches gives the truth's own level).
+//    same measure on points triangulated from the SIFT matches gives the truth's own level);
+//  - the tracker's measurements there: the tracker (default parameters) run in order up to the last
+//    check frame, and at each check frame its inliers' frame corners against their map points'
+//    projections under the true pose and under its own (a measurement off the truth, or a pose).
 #include <string>
 #include <vector>
 
