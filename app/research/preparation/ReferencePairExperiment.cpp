@@ -153,6 +153,16 @@ void reportTrackerMeasurements(const GroundTruthSequence& seq, const MultiRefere
                                const std::vector<int>& checkFrames) {
   const PinholeCamera& camera = seq.camera;
   const int last = *std::max_element(checkFrames.begin(), checkFrames.end());
+  // Each view's corners that carry a map point, with that point (the inliers name reference corners
+  // by their pixel).
+  std::vector<std::vector<std::pair<cv::Point2f, const MapPoint*>>> pointsOfView(map.views.size());
+  for (const MapPoint& p : map.points)
+    for (const PointObservation& ob : p.observations)
+      pointsOfView[static_cast<std::size_t>(ob.view)].emplace_back(
+          map.views[static_cast<std::size_t>(ob.view)]
+              .corners[static_cast<std::size_t>(ob.corner)]
+              .pixel,
+          &p);
   MultiReferenceTracker tracker(map, TrackerParams{});
   std::printf(
       "the tracker (default parameters) over frames 0-%d in order; its inliers' frame corners "
@@ -178,16 +188,11 @@ void reportTrackerMeasurements(const GroundTruthSequence& seq, const MultiRefere
                              char side) {
       for (const auto& [framePixel, referencePixel] : in) {
         const MapPoint* found = nullptr;
-        for (const MapPoint& p : map.points) {
-          for (const PointObservation& ob : p.observations) {
-            if (ob.view != view) continue;
-            const cv::Point2f c = map.views[static_cast<std::size_t>(view)]
-                                      .corners[static_cast<std::size_t>(ob.corner)]
-                                      .pixel;
-            if (std::hypot(c.x - referencePixel.x, c.y - referencePixel.y) < 1e-3) found = &p;
+        for (const auto& [c, p] : pointsOfView[static_cast<std::size_t>(view)])
+          if (std::hypot(c.x - referencePixel.x, c.y - referencePixel.y) < 1e-3) {
+            found = p;
+            break;
           }
-          if (found) break;
-        }
         if (!found) {
           ++withoutPoint;
           continue;
