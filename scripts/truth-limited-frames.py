@@ -2,13 +2,16 @@
 """Which of reftrack's large or under-predicted errors on a clip the per-frame peers share
 (plain Python 3, no packages).
 
-Usage: truth-limited-frames.py CUBE_ERRORS_CSV [ORDER] [--peer-px P] [--worse-px W]
+Usage: truth-limited-frames.py CUBE_ERRORS_CSV [ORDER] [--peer-px P] [--worse-px W] [--within-px D]
   CUBE_ERRORS_CSV  a clip's cube_errors.csv from `reftrack bench-real ... --methods
                    reftrack,sift,akaze --out DIR` (DIR/CLIP/cube_errors.csv)
   ORDER            the order's column suffix (default: sequence)
   --peer-px P      a frame is peer-limited when every peer in the file is more than P px off
                    (default 0.7): there the truth and the image disagree for any method
   --worse-px W     reftrack worse than its best peer by more than W px (default 0.4)
+  --within-px D    coverage, over every frame with a true pose: per peer, the frames it posed
+                   within D px and reftrack did not, and the other way (default 5: the suite's
+                   'within 5 px'; issue 42's cold starts compare these counts)
 
 Reported over the frames every method posed: the peer-limited frames; the frames where reftrack
 is worse than its best peer; the frames whose true error exceeds 3x reftrack's predicted one, and
@@ -28,6 +31,7 @@ def main() -> int:
     parser.add_argument("order", nargs="?", default="sequence")
     parser.add_argument("--peer-px", type=float, default=0.7)
     parser.add_argument("--worse-px", type=float, default=0.4)
+    parser.add_argument("--within-px", type=float, default=5.0)
     args = parser.parse_args()
     try:
         with open(args.csv, newline="") as f:
@@ -68,6 +72,16 @@ def main() -> int:
     print(f"true > 3x predicted: {over3} ({100.0 * over3 / frames:.1f}%), of them peer-limited: "
           f"{over3_limited}; the others {over3 - over3_limited} "
           f"({100.0 * (over3 - over3_limited) / frames:.1f}%)")
+    def within(r, column):
+        return bool(r[column]) and float(r[column]) <= args.within_px
+
+    for p in peers:
+        only_peer = [r["frame"] for r in rows if within(r, p) and not within(r, own)]
+        only_own = [r["frame"] for r in rows if within(r, own) and not within(r, p)]
+        print(f"within {args.within_px:g} px: {p[:-len(suffix)]} {sum(within(r, p) for r in rows)}, "
+              f"reftrack {sum(within(r, own) for r in rows)}; {p[:-len(suffix)]} only: "
+              f"{len(only_peer)}: {' '.join(only_peer)}; reftrack only: {len(only_own)}: "
+              f"{' '.join(only_own)}")
     return 0
 
 
