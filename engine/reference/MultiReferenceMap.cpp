@@ -147,6 +147,12 @@ void MultiReferenceMap::save(const std::filesystem::path& folder) const {
     fs << "point_count" << static_cast<int>(points.size());
     fs << "points" << world << "observations" << obs << "observation_peaks" << peaks;
     fs << "preparation_params" << preparationParams;
+    if (denserCorners) {
+      fs << "denser_corners"
+         << "{";
+      denserCorners->write(fs);
+      fs << "}";
+    }
     fs.release();
   });
 }
@@ -184,12 +190,25 @@ MultiReferenceMap MultiReferenceMap::load(const std::filesystem::path& folder) {
                                          "points",
                                          "observations",
                                          "preparation_params"};
-    if (hasPeaks) rootKeys.push_back("observation_peaks");
+    if (hasPeaks) {
+      rootKeys.push_back("observation_peaks");
+      rootKeys.push_back("denser_corners");
+    }
     read.requireKnown(root, rootKeys);
     map.camera = read.readCamera(root);
     map.poseSource = root["pose_source"].text().value_or("");
     map.keypointKind = root["keypoint_kind"].text().value_or("");
     map.preparationParams = root["preparation_params"].text().value_or("");
+    if (const YamlNode denser = root["denser_corners"]; denser.present()) {
+      if (!denser.isMap()) throw Error(where + ": field 'denser_corners' is not a map");
+      CornerParams corners;
+      try {
+        corners.read(denser);
+      } catch (const Error& e) {
+        throw Error(where + ": field 'denser_corners': " + e.what());
+      }
+      map.denserCorners = corners;
+    }
 
     const YamlNode viewsNode = read.need(root, "views", "views");
     if (!viewsNode.isList()) throw Error(where + ": field 'views' is not a list");

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/config/CornerParams.hpp"
 #include "engine/geometry/PinholeCamera.hpp"
 #include "engine/geometry/RigidPose.hpp"
 #include "engine/reference/ReferenceMap.hpp"
@@ -54,6 +55,9 @@ class MultiReferenceMap {
   std::string keypointKind;       // detector/descriptor of every view's keypoints, e.g. "orb"
   std::string poseSource;         // e.g. "marker DICT_6X6_250:23:0.2" or "poses references.txt"
   std::string preparationParams;  // the parameters used, as YAML text (for the record)
+  // The corners the references were detected with when denser than the preparation's own
+  // (ReferenceMap::denserCorners); map.yml's optional `denser_corners` section.
+  std::optional<CornerParams> denserCorners{};
 
   int size() const { return static_cast<int>(views.size()); }
   // The two-view map the paper's costs run on: views a (as V_A) and b (as V_B), their corners,

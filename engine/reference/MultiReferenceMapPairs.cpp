@@ -40,6 +40,7 @@ ReferenceMap MultiReferenceMap::pair(int a, int b) const {
   m.cornersB = vb.corners;
   m.poseSource = poseSource;
   m.preparationParams = preparationParams;
+  m.denserCorners = denserCorners;
   for (const MapPoint& p : points) {
     const PointObservation *oa = observationIn(p, a), *ob = observationIn(p, b);
     if (!oa || !ob) continue;
@@ -61,6 +62,7 @@ MultiReferenceMap MultiReferenceMap::fromPair(const ReferenceMap& map) {
   m.camera = map.camera;
   m.poseSource = map.poseSource;
   m.preparationParams = map.preparationParams;
+  m.denserCorners = map.denserCorners;
   m.views.resize(2);
   m.views[0] = ReferenceView{"reference_a.png", map.T_A, true, map.imageA, map.cornersA, {}};
   m.views[1] = ReferenceView{"reference_b.png", map.T_B, true, map.imageB, map.cornersB, {}};

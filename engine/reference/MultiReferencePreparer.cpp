@@ -130,6 +130,7 @@ MultiPreparation MultiReferencePreparer::matchAndMerge(
   map.camera = camera_;
   map.poseSource = poseSource;
   map.preparationParams = params_.toYaml();
+  if (denser) map.denserCorners = cornerParams;
   report.denserCorners = denser;
 
   // Corners of every reference, found once (one detector, in order, as the two-view preparation

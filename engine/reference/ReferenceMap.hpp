@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/config/CornerParams.hpp"
 #include "engine/config/YamlNode.hpp"
 #include "engine/geometry/PinholeCamera.hpp"
 #include "engine/geometry/RigidPose.hpp"
@@ -43,6 +44,11 @@ class ReferenceMap {
   std::vector<ReferenceMatch> matches;
   std::string poseSource;         // e.g. "marker DICT_6X6_250:23:0.12" or "poses references.txt"
   std::string preparationParams;  // the parameters used, as YAML text (for the record)
+  // Set when the references' corners were detected denser than the preparation's corners (soft
+  // images: MultiReferencePreparer): the tracker detects the frames' corners at least as densely,
+  // or few of its corners are those the map's points lie on. Kept by MultiReferenceMap's file,
+  // not by this class's own (version 1).
+  std::optional<CornerParams> denserCorners{};
 
   RigidPose T_AB() const { return T_B * T_A.inverse(); }
 

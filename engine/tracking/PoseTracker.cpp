@@ -406,6 +406,18 @@ struct PoseTracker::Impl {
     // corners left ~15 3D-2D inliers and lost half the frames of a hand-held sequence).
     cornerParams.countAt320x240 = std::max(cornerParams.countAt320x240, 2 * 55);
     cornerParams.quality = std::min(cornerParams.quality, params.wideBaseline.frameCornerQuality);
+    // A map made from denser corners (soft images repeat few of the strongest corners between
+    // views) has its points on corners this detector would not find: frames are detected at
+    // least as densely. Kinect pair 440/460 (233 points, from 4000 corners per reference): the
+    // reference frame itself found 14 of them, "too few 3D-2D matches", and 0 of frames 420-499
+    // were tracked; detected like the map, 11 (app/research/README.md, "Maps from soft images").
+    if (map.denserCorners) {
+      cornerParams.countAt320x240 =
+          std::max(cornerParams.countAt320x240, map.denserCorners->countAt320x240);
+      cornerParams.quality = std::min(cornerParams.quality, map.denserCorners->quality);
+      cornerParams.minDistancePx =
+          std::min(cornerParams.minDistancePx, map.denserCorners->minDistancePx);
+    }
     detector = std::make_unique<CornerDetector>(cornerParams);
   }
 

@@ -138,6 +138,40 @@ TEST(MultiReferenceMap, RoundTripsEveryFieldExactly) {
   EXPECT_EQ(*back.points[0].observations[0].peak, m.views[0].corners[0].pixel);
 }
 
+// A map made from denser corners keeps their parameters (the tracker detects its frames so);
+// one without keeps none, and a bad value in the section is named.
+TEST(MultiReferenceMap, KeepsTheDenserCornersItWasMadeFrom) {
+  const auto dir = test::freshTempDir("MultiReferenceMap_DenserCorners");
+  MultiReferenceMap m = makeMap();
+  m.save(dir / "plain");
+  EXPECT_FALSE(MultiReferenceMap::load(dir / "plain").denserCorners.has_value());
+  EXPECT_EQ(test::readTextFile(dir / "plain" / "map.yml").find("denser_corners"),
+            std::string::npos);
+  CornerParams denser;
+  denser.countAt320x240 = 1000;
+  denser.quality = 1e-6;
+  denser.minDistancePx = 2.0;
+  m.denserCorners = denser;
+  m.save(dir / "ok");
+  const MultiReferenceMap back = MultiReferenceMap::load(dir / "ok");
+  ASSERT_TRUE(back.denserCorners.has_value());
+  EXPECT_EQ(back.denserCorners->countAt320x240, 1000);
+  EXPECT_EQ(back.denserCorners->quality, 1e-6);
+  EXPECT_EQ(back.denserCorners->minDistancePx, 2.0);
+  // The pairs the tracker runs on carry it, and a pair's map gives it back.
+  ASSERT_TRUE(back.pair(0, 1).denserCorners.has_value());
+  EXPECT_EQ(back.pair(0, 1).denserCorners->countAt320x240, 1000);
+  EXPECT_EQ(MultiReferenceMap::fromPair(back.pair(0, 1)).denserCorners->quality, 1e-6);
+
+  std::string yml = test::readTextFile(dir / "ok" / "map.yml");
+  const std::size_t count = yml.find("count: 1000", yml.find("\ndenser_corners:"));
+  ASSERT_NE(count, std::string::npos);
+  yml.replace(count, 11, "count: -3");
+  const std::string error = loadError(writeMapVariant(dir, m, "bad", yml));
+  EXPECT_NE(error.find("field 'denser_corners'"), std::string::npos) << error;
+  EXPECT_NE(error.find("corners.count"), std::string::npos) << error;
+}
+
 TEST(MultiReferenceMap, LoadsAVersionTwoMapAtItsCorners) {
   // Format 2 is format 3 without observation_peaks: every observation is measured at its corner.
   const auto dir = test::freshTempDir("MultiReferenceMap_V2");

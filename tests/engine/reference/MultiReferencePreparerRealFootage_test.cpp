@@ -118,6 +118,7 @@ TEST(MultiReferencePreparerRealFootage, KinectFramesWithDepthCameraPosesGiveAnAc
   // poses put good matches 2.3 px median from their epipolar lines; the images' own relative
   // pose 0.2 px. Before the probe of the given poses the 2 px gate kept 42 points.
   const MultiPreparation p = clip->prepare(200, 220);
+  EXPECT_FALSE(p.map.denserCorners.has_value());  // the references' own corners sufficed
   const EpipolarMatchStats& s = p.report.pairs.front().matching;
   ASSERT_TRUE(s.poseFit.has_value());
   EXPECT_TRUE(s.posesDisagree);
@@ -149,6 +150,10 @@ TEST(MultiReferencePreparerRealFootage, AKinectPair40CmApartIsMadeFromDenserCorn
   // refused, "only 17 map points"); the denser corners 132.
   const MultiPreparation p = clip->prepare(50, 105);
   EXPECT_TRUE(p.report.denserCorners);
+  // The map says how its corners were found, so the tracker detects its frames alike.
+  ASSERT_TRUE(p.map.denserCorners.has_value());
+  EXPECT_EQ(p.map.denserCorners->countAt320x240, ReferencePreparerParams{}.denserCornerCount);
+  EXPECT_EQ(p.map.denserCorners->quality, ReferencePreparerParams{}.denserCornerQuality);
   EXPECT_LT(p.report.pointsBeforeDenserCorners, 100);
   EXPECT_GE(p.map.points.size(), 100u);
   // In frames between the references the points are where the images put them to the ground

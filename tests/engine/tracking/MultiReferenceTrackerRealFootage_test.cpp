@@ -448,5 +448,55 @@ TEST_F(MultiReferenceTrackerShelf, AbruptChangesOfViewGiveNoWrongPose) {
   }
 }
 
+// A map of soft Kinect frames made from denser corners (references 440 and 460 of
+// ../shared/data/kinect-kitchen, 19 cm and 10 degrees apart: their own corners give 43 points,
+// the denser ones 233) is tracked with frames detected as densely. Before, the tracker's corners
+// held 11-14 of the map's points and not one of frames 440-452 got a pose, the reference frame
+// itself included ("too few 3D-2D matches"). Score: a cube of 8 cm edge centred 1 m in front of
+// reference 440's camera, as bench-real's Kinect segments score it. Measured: all 13 frames
+// posed; 0.8-3.1 px but frames 447-451 (11.4, 24.4, 22.8, 14.5, 5.7 px), where SIFT+PnP from the
+// same references with the same truth is as far off (9.8, 25.8, 21.9, 16.7, 9.4 px: `bench-real`
+// on frames 420-499, app/research/README.md): the given poses disagree with the images there
+// (prepare's probe: 3.7 degrees). Bounds: every frame posed, median below 5 px, none beyond 30.
+TEST(MultiReferenceTrackerKinect, AMapFromDenserCornersIsTrackedFromItsReferenceOn) {
+  const std::optional<std::filesystem::path> data = test::sharedDataDir();
+  if (!data || !std::filesystem::exists(*data / "kinect-kitchen" / "groundtruth.txt"))
+    GTEST_SKIP() << "../shared/data/kinect-kitchen not available (the shared real recordings)";
+  const std::filesystem::path dir = *data / "kinect-kitchen";
+  const PinholeCamera camera = PinholeCamera::load(dir / "camera.yml");
+  const TumTrajectory gt = TumTrajectory::load(dir / "groundtruth.txt");
+  const auto frame = [&](int k) {
+    char name[32];
+    std::snprintf(name, sizeof name, "%06d.jpg", k);
+    return cv::imread((dir / "frames" / name).string(), cv::IMREAD_GRAYSCALE);
+  };
+  const auto truth = [&](int k) { return gt.poseAt(k / 30.0, 1e-3).value(); };
+  const MultiReferenceMap map = MultiReferencePreparer(camera)
+                                    .prepare({{frame(440), "frame 440"}, {frame(460), "frame 460"}},
+                                             {truth(440), truth(460)}, "groundtruth.txt")
+                                    .map;
+  ASSERT_TRUE(map.denserCorners.has_value());
+  std::vector<Eigen::Vector3d> cube;
+  for (int v = 0; v < 8; ++v)
+    cube.push_back(truth(440).inverse() * Eigen::Vector3d((v & 1) ? 0.04 : -0.04,
+                                                          (v & 2) ? 0.04 : -0.04,
+                                                          (v & 4) ? 1.04 : 0.96));
+  MultiReferenceTracker tracker(map, TrackerParams{});
+  std::vector<double> errors;
+  for (int k = 440; k <= 452; ++k) {
+    const MultiReferenceResult r = tracker.process(frame(k));
+    ASSERT_TRUE(r.tracking.worldToCamera.has_value())
+        << "frame " << k << ": " << r.tracking.message;
+    double sum = 0.0;
+    for (const Eigen::Vector3d& X : cube)
+      sum += (camera.project(*r.tracking.worldToCamera * X) - camera.project(truth(k) * X)).norm();
+    errors.push_back(sum / 8.0);
+    std::printf("frame %d: %.2f px\n", k, errors.back());
+  }
+  EXPECT_LT(percentile(errors, 0.5), 5.0);
+  EXPECT_LT(*std::max_element(errors.begin(), errors.end()), 30.0);
+  RecordProperty("cube_error_median_px", std::to_string(percentile(errors, 0.5)));
+}
+
 }  // namespace
 }  // namespace reftrack
