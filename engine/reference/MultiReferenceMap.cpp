@@ -33,6 +33,13 @@ void MultiReferenceMap::check() const {
   } catch (const Error& e) {
     throw Error(std::string("camera: ") + e.what());
   }
+  if (denserCorners) {
+    try {
+      denserCorners->check();
+    } catch (const Error& e) {
+      throw Error(std::string("denser_corners: ") + e.what());
+    }
+  }
   if (views.size() < 2)
     throw Error("views: a map needs at least 2 references, got " + std::to_string(views.size()));
   const cv::Size imageSize = camera.imageSize();

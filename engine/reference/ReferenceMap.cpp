@@ -26,6 +26,13 @@ YamlNode openReferenceMapFile(const std::filesystem::path& file) {
 
 void ReferenceMap::check() const {
   camera.check();
+  if (denserCorners) {
+    try {
+      denserCorners->check();
+    } catch (const Error& e) {
+      throw Error(std::string("denser corners: ") + e.what());
+    }
+  }
   if (!T_A.allFinite() || !T_B.allFinite()) throw Error("reference poses T_A/T_B are not finite");
   if (imageA.empty() || imageB.empty()) throw Error("reference images are missing");
   if (imageA.size() != camera.imageSize() || imageB.size() != camera.imageSize()) {

@@ -170,6 +170,12 @@ TEST(MultiReferenceMap, KeepsTheDenserCornersItWasMadeFrom) {
   const std::string error = loadError(writeMapVariant(dir, m, "bad", yml));
   EXPECT_NE(error.find("field 'denser_corners'"), std::string::npos) << error;
   EXPECT_NE(error.find("corners.count"), std::string::npos) << error;
+  // Set in memory, the map's check names it too (and a pair's, which the tracker checks).
+  m.denserCorners->quality = std::nan("");
+  EXPECT_NE(checkError(m).find("denser_corners: parameter 'corners.quality'"), std::string::npos)
+      << checkError(m);
+  EXPECT_NE(test::errorMessage([&] { m.pair(0, 1).check(); }).find("denser corners: "),
+            std::string::npos);
 }
 
 TEST(MultiReferenceMap, LoadsAVersionTwoMapAtItsCorners) {
