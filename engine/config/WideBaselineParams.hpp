@@ -44,17 +44,13 @@ struct WideBaselineParams : ParamSection<WideBaselineParams> {
   // robust linear pose and aligned to the frame by Lucas-Kanade in (2 keypoint_half_window + 1)^2
   // windows, join the three-view terms; 0: none. Each term's SD is the alignment's own, at least
   // keypointSigmaPx, and its point's triangulation covariance (pose.map_point_sd_scale) is
-  // computed with that SD at both references. Measured on the real clips (README "Denser
-  // measurements"; `bench-real`, mean / p95 cube error px, in order): every point (~400-540
-  // alignments, both references' layers), SD 0.3 px, half window 4: desk refs 0/40 0.345 / 0.770
-  // -> 0.294 / 0.611, shelf refs 0/60 0.182 / 0.353 -> 0.176 / 0.346, no pose more than 5 px off
-  // in any of four orders; but not on the desk's other pairs (200/240 0.322 -> 0.322 with 7 fewer
-  // frames posed, 100/140 0.229 -> 0.237, 300/340 0.275 -> 0.279; shelf 0/30 0.293 -> 0.263,
-  // 100/160 0.214 -> 0.212), and the median CPU per tracked frame x1.5 (desk) and x1.8 (shelf),
-  // far over the 2.4 ms budget: off by default. Desk 0/40 with fewer points: 87 per frame 0.335;
-  // one reference's layer alone (the nearer) 0.318; at half window 7, SD 0.1 / 0.3 / 0.5: 0.340 /
-  // 0.305 / 0.307.
-  int keypointPointsAt320x240 = 0;
+  // computed with that SD at both references. The pose's support is judged on the corners' terms
+  // alone (PoseTracker 8c). Measured on the real-clip suite (app/research/README.md, "The
+  // keypoint layer's terms by default"), in order / shuffled, mean px: ViSP 0.467 / 0.497 ->
+  // 0.384 / 0.377 (p95 1.41 -> 0.92, true / predicted 1.67 -> 1.01), desk 0.348 -> 0.321, shelf
+  // 0.179 -> 0.174, the Kinect segments as many frames within 5 px; 40: ViSP 0.417 / 0.405, 150:
+  // 0.394 / 0.388. It costs the desk ~0.8 ms per frame (2.5 -> 3.3).
+  int keypointPointsAt320x240 = 75;
   int keypointPointsFor(cv::Size imageSize) const;  // 0 = none
   double keypointSigmaPx = 0.3;
   int keypointHalfWindow = 4;

@@ -539,8 +539,9 @@ struct PoseTracker::Impl {
                                         const Measurements& meas, const std::vector<Pair3D>& pairs,
                                         double gate, PoseTrackingResult& r);
   void measureKeypoints(const cv::Mat& gray, double gate, Inliers& in, PoseTrackingResult& r);
-  bool checkSupport(const PoseEstimate& est, const PoseMeasurements& meas, double scale,
-                    PoseTrackingResult& r);
+  std::optional<std::string> supportFailure(const PoseEstimate& est, const PoseMeasurements& meas,
+                                            std::size_t supportTerms, double scale,
+                                            PoseTrackingResult& r) const;
   void keepInliers(const FrameCorners& c, const FrameMatches& m, const Inliers& in,
                    PoseTrackingResult& r);
   void recordResiduals(const RigidPose& TAk, const Inliers& in);
@@ -972,33 +973,36 @@ void PoseTracker::Impl::measureKeypoints(const cv::Mat& gray, double gate, Inlie
 
 // Stage 9, support: the estimate must be finite with a sane covariance, fit its three-view
 // matches, and the matches alone must pin the scene's image position down (PoseSupport: black,
-// textureless and heavily blurred frames fail here). False (with the reason in r) otherwise.
-bool PoseTracker::Impl::checkSupport(const PoseEstimate& est, const PoseMeasurements& meas,
-                                     double scale, PoseTrackingResult& r) {
+// textureless and heavily blurred frames fail here). Judged on the first `supportTerms` three-view
+// terms (the corners'; keypoint terms follow them). The reason it fails (sets r.supportSdPx), or
+// nullopt when it holds.
+std::optional<std::string> PoseTracker::Impl::supportFailure(const PoseEstimate& est,
+                                                             const PoseMeasurements& meas,
+                                                             std::size_t supportTerms, double scale,
+                                                             PoseTrackingResult& r) const {
   const RigidPose TAk = RigidPose::fromVector6(est.x);
+  const std::size_t n = std::min(supportTerms, meas.threeView.size());
+  std::vector<ThreeViewMatch> corners;
+  if (n < meas.threeView.size())
+    corners.assign(meas.threeView.begin(), meas.threeView.begin() + static_cast<std::ptrdiff_t>(n));
+  const std::vector<ThreeViewMatch>& support = n < meas.threeView.size() ? corners : meas.threeView;
   double sse = 0.0;
-  for (const ThreeViewMatch& t : meas.threeView)
+  for (const ThreeViewMatch& t : support)
     sse += (map.camera.project(TAk * t.pointA) - t.pK).squaredNorm();
-  const double rms = std::sqrt(sse / static_cast<double>(meas.threeView.size()));
+  const double rms = std::sqrt(sse / static_cast<double>(std::max<std::size_t>(n, 1)));
   const double sigmaT = std::sqrt(est.covariance.topLeftCorner<3, 3>().diagonal().maxCoeff());
-  if (!est.covarianceValid || !std::isfinite(sigmaT) || sigmaT > limits.maxSigmaTranslation) {
-    lose(r, est.covarianceValid ? "pose covariance blew up (translation SD " +
-                                      std::to_string(sigmaT * 1000.0) + " mm)"
-                                : "pose covariance is not positive definite");
-    return false;
-  }
-  if (rms > limits.maxRmsPx * scale) {
-    lose(r, "reprojection RMS " + std::to_string(rms) + " px at the solution is too large");
-    return false;
-  }
-  const std::optional<double> supportSd = reprojectionSupportSdPx(map.camera, TAk, meas.threeView);
+  if (!est.covarianceValid || !std::isfinite(sigmaT) || sigmaT > limits.maxSigmaTranslation)
+    return est.covarianceValid ? "pose covariance blew up (translation SD " +
+                                     std::to_string(sigmaT * 1000.0) + " mm)"
+                               : std::string("pose covariance is not positive definite");
+  if (rms > limits.maxRmsPx * scale)
+    return "reprojection RMS " + std::to_string(rms) + " px at the solution is too large";
+  const std::optional<double> supportSd = reprojectionSupportSdPx(map.camera, TAk, support);
   r.supportSdPx = supportSd.value_or(INFINITY);
-  if (!supportSd || *supportSd > limits.maxSupportSdPx * scale) {
-    lose(r, "too little support: the matches fix the scene's image position only to " +
-                std::to_string(r.supportSdPx) + " px (SD)");
-    return false;
-  }
-  return true;
+  if (!supportSd || *supportSd > limits.maxSupportSdPx * scale)
+    return "too little support: the matches fix the scene's image position only to " +
+           std::to_string(r.supportSdPx) + " px (SD)";
+  return std::nullopt;
 }
 
 // Stage 9b, verification: the pose's own projections of the distinctive map points must be
@@ -1255,9 +1259,13 @@ PoseTrackingResult PoseTracker::Impl::process(const cv::Mat& frame) {
   std::optional<Inliers> inliers = rejectOutliers(corners, matches, meas, pairs, gate, r);
   r.timings.push_back({"outliers", msSince(t)});
   if (!inliers) return finish(r);
+  // 7b. The keypoint layer's terms; the frame's corner terms are kept aside (8c).
+  std::optional<Inliers> cornerTerms;
   if (params.wideBaseline.keypointPointsAt320x240 > 0) {
     t = Clock::now();
+    cornerTerms = *inliers;
     measureKeypoints(gray, gate, *inliers, r);
+    if (r.keypointMeasurements == 0) cornerTerms.reset();
     r.timings.push_back({"keypoints", msSince(t)});
   }
 
@@ -1266,9 +1274,30 @@ PoseTrackingResult PoseTracker::Impl::process(const cv::Mat& frame) {
   std::optional<PoseEstimate> est =
       regularizer->step(*estimator, inliers->measurements, inliers->xLin);
   // 8b. Terms far off their kind's scale at the estimate dropped, and the frame estimated again.
-  if (est && est->x.allFinite() && dropOutlierTerms(RigidPose::fromVector6(est->x), *inliers) > 0) {
-    est = regularizer->redoLastStep(*estimator, inliers->measurements, inliers->xLin);
-    r.inliers = static_cast<int>(inliers->threeViewMeasurement.size());
+  const auto dropAndRedo = [&] {
+    if (est && est->x.allFinite() &&
+        dropOutlierTerms(RigidPose::fromVector6(est->x), *inliers) > 0) {
+      est = regularizer->redoLastStep(*estimator, inliers->measurements, inliers->xLin);
+      r.inliers = static_cast<int>(inliers->threeViewMeasurement.size());
+    }
+  };
+  dropAndRedo();
+  // 8c. With keypoint terms the support is the corners' alone: aligned around the linear pose, the
+  // keypoints confirm whatever pose they start from and passed the check in frames the corners do
+  // not pin down (Kinect poses 2-47 px off), and after a jump onto look-alikes they outweighed the
+  // few corners (shuffled ViSP: poses 75-78 px off). A joint pose that fails it, or does not
+  // converge, gives way to the corners' own.
+  if (cornerTerms) {
+    const bool jointHolds = est && est->x.allFinite() &&
+                            !supportFailure(*est, inliers->measurements,
+                                            inliers->threeViewMeasurement.size(), scale, r);
+    if (!jointHolds) {
+      *inliers = std::move(*cornerTerms);
+      r.keypointMeasurements = 0;
+      r.inliers = static_cast<int>(inliers->threeViewMeasurement.size());
+      est = regularizer->redoLastStep(*estimator, inliers->measurements, inliers->xLin);
+      dropAndRedo();
+    }
   }
   r.timings.push_back({"pose", msSince(t)});
   if (!est || !est->x.allFinite()) {
@@ -1277,7 +1306,11 @@ PoseTrackingResult PoseTracker::Impl::process(const cv::Mat& frame) {
   }
 
   // 9. Support.
-  if (!checkSupport(*est, inliers->measurements, scale, r)) return finish(r);
+  if (const std::optional<std::string> why = supportFailure(
+          *est, inliers->measurements, inliers->threeViewMeasurement.size(), scale, r)) {
+    lose(r, *why);
+    return finish(r);
+  }
   const RigidPose TAk = RigidPose::fromVector6(est->x);
   // 9a. A jump: the pose moved the scene farther since the last frame than the wide-baseline
   // search reaches (a cut, dropped frames, a covered lens). Its matches were sought around

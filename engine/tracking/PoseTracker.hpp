@@ -2,8 +2,9 @@
 // PoseTracker (paper Sec. 3-6): the full 6-DOF tracker. Each frame: corners; while tracking,
 // frame-to-frame narrow-baseline matching and homography, wide-baseline matching to V_A and V_B
 // (WideBaselineMatcher), three-view pairs through the map's A<->B matches, outlier rejection by
-// PnP-RANSAC on the 3D-2D pairs and an epipolar gate, optionally the keypoint layer's points
-// aligned around the robust pose's projections (KeypointMeasurer, wide_baseline.keypoint_points),
+// PnP-RANSAC on the 3D-2D pairs and an epipolar gate, the keypoint layer's points aligned around
+// the robust pose's projections (KeypointMeasurer, wide_baseline.keypoint_points; the support is
+// judged on the corners' terms, and the corners' own pose stands when the joint one fails it),
 // then the pose x_Ak from the standard or the regularised estimator (TemporalRegularizer). Not
 // tracking: initialisation by narrow-baseline matching to V_A (or V_B) and V_B through the stored
 // matches, and when that finds too little, with the frame's windows resampled for one of a few

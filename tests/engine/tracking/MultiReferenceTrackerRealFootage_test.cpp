@@ -48,10 +48,13 @@ struct RealClip {
   Eigen::Vector3d cubeBase;  // centre of the scoring cube's base (world, m); it extends to +z
   double cubeEdge = 0.1;
 
-  // `folder` of ../shared/data, its first `count` frames (NNNNNN.jpg at index / 30 s), the map of
-  // frames a and b; nullopt when absent.
+  // `folder` of ../shared/data, its first `count` frames (NNNNNN.`extension` at index / 30 s), the
+  // map of frames a and b; nullopt when absent. `colour`: the frames read in colour, as `reftrack`
+  // reads them (the tracker converts them; a decoder's own grey differs by a grey level here and
+  // there, enough to move a frame at the edge of the support limits).
   static std::optional<RealClip> load(const std::string& folder, int count, int a, int b,
-                                      const Eigen::Vector3d& cubeBase, double cubeEdge) {
+                                      const Eigen::Vector3d& cubeBase, double cubeEdge,
+                                      const std::string& extension = "jpg", bool colour = false) {
     const std::optional<std::filesystem::path> data = test::sharedDataDir();
     if (!data) return std::nullopt;
     const std::filesystem::path dir = *data / folder;
@@ -61,8 +64,9 @@ struct RealClip {
     const TumTrajectory gt = TumTrajectory::load(dir / "groundtruth.txt");
     for (int i = 0; i < count; ++i) {
       char name[32];
-      std::snprintf(name, sizeof name, "%06d.jpg", i);
-      cv::Mat frame = cv::imread((dir / "frames" / name).string(), cv::IMREAD_GRAYSCALE);
+      std::snprintf(name, sizeof name, "%06d.", i);
+      cv::Mat frame = cv::imread((dir / "frames" / (name + extension)).string(),
+                                 colour ? cv::IMREAD_COLOR : cv::IMREAD_GRAYSCALE);
       const std::optional<RigidPose> pose = gt.poseAt(i / 30.0, 1e-3);
       if (frame.empty() || !pose) return std::nullopt;
       clip.frames.push_back(frame);
@@ -105,6 +109,10 @@ std::optional<RealClip> loadDesk() {
 std::optional<RealClip> loadShelf() {
   return RealClip::load("shelf-apriltags", 210, 0, 60, Eigen::Vector3d(0.1, 0.2, -0.12), 0.05);
 }
+std::optional<RealClip> loadVisp() {
+  return RealClip::load("visp-desk-apriltags", 99, 0, 40, Eigen::Vector3d(0.18, 0.12, 0.0), 0.1,
+                        "png", true);
+}
 
 double percentile(std::vector<double> v, double q) {
   std::sort(v.begin(), v.end());
@@ -136,6 +144,10 @@ struct Desk {
 struct Shelf {
   static constexpr const char* kFolder = "shelf-apriltags";
   static std::optional<RealClip> load() { return loadShelf(); }
+};
+struct Visp {
+  static constexpr const char* kFolder = "visp-desk-apriltags";
+  static std::optional<RealClip> load() { return loadVisp(); }
 };
 using MultiReferenceTrackerRealFootage = RealClipSuite<Desk>;
 
@@ -446,6 +458,47 @@ TEST_F(MultiReferenceTrackerShelf, AbruptChangesOfViewGiveNoWrongPose) {
       EXPECT_LE(score.worstReacquire, 1);
     }
   }
+}
+
+// ViSP's desk clip (references 0 and 40; another camera than the desk's and the shelf's, a
+// rolling shutter, repeated texture): in order with the default parameters. The keypoint layer's
+// terms (wide_baseline.keypoint_points), with the support judged on the corners' terms, took it
+// from 98 / 99 posed, mean 0.467, p95 1.41 px, true / predicted 1.67 to 99 / 99, 0.384, 0.92,
+// 1.01 (per-frame AKAZE+PnP 0.371, SIFT+PnP 0.373 from the same references). Bounds: >= 98 frames
+// posed, mean <= 0.42 px (between the two: the corners alone fail it), p95 <= 1.0, no pose more
+// than 5 px off, and the median of true / predicted error within 0.7-1.4 (issue 41).
+using MultiReferenceTrackerVisp = RealClipSuite<Visp>;
+
+TEST_F(MultiReferenceTrackerVisp, TracksTheClipAsWellAsThePerFramePeers) {
+  MultiReferenceTracker tracker(clip_->map, TrackerParams{});
+  std::vector<Eigen::Vector3d> cube;  // the scored cube, whose error the prediction is for
+  const double h = 0.5 * clip_->cubeEdge;
+  for (int v = 0; v < 8; ++v)
+    cube.push_back(clip_->cubeBase +
+                   Eigen::Vector3d((v & 1) ? h : -h, (v & 2) ? h : -h, (v & 4) ? 2 * h : 0));
+  tracker.setOverlayPoints(cube);
+  std::vector<double> errors, ratios;
+  for (int i = 0; i < static_cast<int>(clip_->frames.size()); ++i) {
+    const MultiReferenceResult r = tracker.process(clip_->frames[static_cast<std::size_t>(i)]);
+    if (!r.tracking.worldToCamera) {
+      std::printf("frame %d: %s\n", i, r.tracking.message.c_str());
+      continue;
+    }
+    errors.push_back(clip_->cubeError(i, *r.tracking.worldToCamera));
+    if (r.predictedErrorPx && *r.predictedErrorPx > 0)
+      ratios.push_back(errors.back() / *r.predictedErrorPx);
+  }
+  ASSERT_GE(errors.size(), 98U);
+  const double mean =
+      std::accumulate(errors.begin(), errors.end(), 0.0) / static_cast<double>(errors.size());
+  EXPECT_LE(mean, 0.42);
+  EXPECT_LE(percentile(errors, 0.95), 1.0);
+  EXPECT_LT(*std::max_element(errors.begin(), errors.end()), 5.0);
+  ASSERT_GE(ratios.size(), 90U);
+  EXPECT_GE(percentile(ratios, 0.5), 0.7);
+  EXPECT_LE(percentile(ratios, 0.5), 1.4);
+  RecordProperty("cube_error_mean_px", std::to_string(mean));
+  RecordProperty("true_over_predicted_median", std::to_string(percentile(ratios, 0.5)));
 }
 
 // A map of soft Kinect frames made from denser corners (references 440 and 460 of
