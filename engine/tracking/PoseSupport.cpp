@@ -2,11 +2,12 @@
 
 #include <Eigen/Cholesky>
 #include <cmath>
+#include <vector>
 
 namespace reftrack {
 
 std::optional<double> reprojectionSupportSdPx(const PinholeCamera& camera, const RigidPose& T,
-                                              const std::vector<ThreeViewMatch>& support) {
+                                              std::span<const ThreeViewMatch> support) {
   const std::size_t n = support.size();
   if (n < 4) return std::nullopt;
   const Vector6d x = T.toVector6();

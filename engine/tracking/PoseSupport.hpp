@@ -5,7 +5,7 @@
 // s^2 = SSE / (2N - 6) is the residual variance actually observed. Few matches, large residuals
 // (blurred corners) or a poor spread all raise it; the tracker refuses a pose above a limit.
 #include <optional>
-#include <vector>
+#include <span>
 
 #include "engine/estimation/RegularizedPoseEstimator.hpp"
 #include "engine/geometry/PinholeCamera.hpp"
@@ -15,6 +15,6 @@ namespace reftrack {
 // RMS over the support points of the SD (pixels, per image axis) of their reprojection under T;
 // nullopt with fewer than 4 points or a rank-deficient J (no support at all).
 std::optional<double> reprojectionSupportSdPx(const PinholeCamera& camera, const RigidPose& T,
-                                              const std::vector<ThreeViewMatch>& support);
+                                              std::span<const ThreeViewMatch> support);
 
 }  // namespace reftrack

@@ -8,6 +8,7 @@
 #include <limits>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
+#include <span>
 #include <utility>
 
 #include "engine/config/ResolutionScale.hpp"
@@ -982,10 +983,7 @@ std::optional<std::string> PoseTracker::Impl::supportFailure(const PoseEstimate&
                                                              PoseTrackingResult& r) const {
   const RigidPose TAk = RigidPose::fromVector6(est.x);
   const std::size_t n = std::min(supportTerms, meas.threeView.size());
-  std::vector<ThreeViewMatch> corners;
-  if (n < meas.threeView.size())
-    corners.assign(meas.threeView.begin(), meas.threeView.begin() + static_cast<std::ptrdiff_t>(n));
-  const std::vector<ThreeViewMatch>& support = n < meas.threeView.size() ? corners : meas.threeView;
+  const std::span<const ThreeViewMatch> support(meas.threeView.data(), n);
   double sse = 0.0;
   for (const ThreeViewMatch& t : support)
     sse += (map.camera.project(TAk * t.pointA) - t.pK).squaredNorm();
@@ -1287,11 +1285,15 @@ PoseTrackingResult PoseTracker::Impl::process(const cv::Mat& frame) {
   // not pin down (Kinect poses 2-47 px off), and after a jump onto look-alikes they outweighed the
   // few corners (shuffled ViSP: poses 75-78 px off). A joint pose that fails it, or does not
   // converge, gives way to the corners' own.
+  std::optional<std::string> unsupported;  // stage 9's verdict, once it is known
+  bool supportKnown = false;
   if (cornerTerms) {
-    const bool jointHolds = est && est->x.allFinite() &&
-                            !supportFailure(*est, inliers->measurements,
-                                            inliers->threeViewMeasurement.size(), scale, r);
-    if (!jointHolds) {
+    if (est && est->x.allFinite()) {
+      unsupported = supportFailure(*est, inliers->measurements,
+                                   inliers->threeViewMeasurement.size(), scale, r);
+      supportKnown = !unsupported;
+    }
+    if (!supportKnown) {
       *inliers = std::move(*cornerTerms);
       r.keypointMeasurements = 0;
       r.inliers = static_cast<int>(inliers->threeViewMeasurement.size());
@@ -1305,10 +1307,12 @@ PoseTrackingResult PoseTracker::Impl::process(const cv::Mat& frame) {
     return finish(r);
   }
 
-  // 9. Support.
-  if (const std::optional<std::string> why = supportFailure(
-          *est, inliers->measurements, inliers->threeViewMeasurement.size(), scale, r)) {
-    lose(r, *why);
+  // 9. Support (already judged in 8c when the joint pose held).
+  if (!supportKnown)
+    unsupported =
+        supportFailure(*est, inliers->measurements, inliers->threeViewMeasurement.size(), scale, r);
+  if (unsupported) {
+    lose(r, *unsupported);
     return finish(r);
   }
   const RigidPose TAk = RigidPose::fromVector6(est->x);
