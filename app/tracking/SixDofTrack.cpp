@@ -23,8 +23,8 @@ namespace reftrack::app {
 
 namespace {
 
-const char* kStages[] = {"corners", "frame-to-frame", "seed", "initialise", "match A",
-                         "match B", "outliers",       "pose", "verify"};
+const char* kStages[] = {"corners", "frame-to-frame", "seed",      "initialise", "match A",
+                         "match B", "outliers",       "keypoints", "pose",       "verify"};
 
 // A CSV field: quoted, inner quotes doubled (messages hold commas).
 std::string quoted(const std::string& text) {

@@ -40,11 +40,10 @@ PoseEstimate RegularizedPoseEstimator::estimateStandard(const PoseMeasurements& 
   return solve(m, start, nullptr, nullptr, 0.0);
 }
 
-PoseEstimate RegularizedPoseEstimator::estimateRegularised(const PoseMeasurements& m,
-                                                           const Vector6d& xPred,
-                                                           const Matrix6d& omegaPred,
-                                                           double alpha) const {
-  return solve(m, xPred, &xPred, &omegaPred, alpha);
+PoseEstimate RegularizedPoseEstimator::estimateRegularised(
+    const PoseMeasurements& m, const Vector6d& xPred, const Matrix6d& omegaPred, double alpha,
+    const std::optional<Vector6d>& start) const {
+  return solve(m, start.value_or(xPred), &xPred, &omegaPred, alpha);
 }
 
 PoseEstimate RegularizedPoseEstimator::solve(const PoseMeasurements& m, const Vector6d& start,

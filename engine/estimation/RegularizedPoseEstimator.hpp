@@ -61,13 +61,16 @@ class RegularizedPoseEstimator {
 
   // Eq. 12: min z^T M_meas z, started at `start`.
   PoseEstimate estimateStandard(const PoseMeasurements& m, const Vector6d& start) const;
-  // Eq. 13, started at x_pred.
+  // Eq. 13, started at `start` (x_pred when not given).
   PoseEstimate estimateRegularised(const PoseMeasurements& m, const Vector6d& xPred,
-                                   const Matrix6d& omegaPred, double alpha) const;
+                                   const Matrix6d& omegaPred, double alpha,
+                                   const std::optional<Vector6d>& start = std::nullopt) const;
 
   // Linear start from the 3D-2D pairs (OpenCV PnP: EPnP, then iterative refinement); nullopt
   // with fewer than 6 pairs or a degenerate solution.
   std::optional<Vector6d> linearStart(const std::vector<ThreeViewMatch>& pairs) const;
+
+  const PoseSolverOptions& options() const { return options_; }
 
  private:
   PoseEstimate solve(const PoseMeasurements& m, const Vector6d& start, const Vector6d* xPred,

@@ -27,7 +27,11 @@ KeypointMeasurer::KeypointMeasurer(PinholeCamera camera, std::vector<MeasurableK
     throw Error("KeypointMeasurer: references must be 8-bit grey");
   grays_[0] = grayA;
   grays_[1] = grayB;
-  neighbours_.resize(points_.size());
+  index();
+}
+
+void KeypointMeasurer::index() {
+  neighbours_.assign(points_.size(), {});
   std::vector<std::pair<float, int>> byDistance;
   for (std::size_t i = 0; i < points_.size(); ++i) {
     byDistance.clear();
@@ -46,9 +50,37 @@ KeypointMeasurer::KeypointMeasurer(PinholeCamera camera, std::vector<MeasurableK
   std::shuffle(order_.begin(), order_.end(), std::mt19937(33));
 }
 
+int KeypointMeasurer::dropPointsFailingBetweenReferences(const RigidPose& T_AB) {
+  std::vector<char> failed(points_.size(), 0);
+  for (int r = 0; r < 2; ++r) {
+    // This reference's points measured in the other's image, that camera the frame.
+    std::vector<char> tried;
+    std::vector<char> aligned(points_.size(), 0);
+    const RigidPose toOther = r == 0 ? T_AB : RigidPose::identity();
+    for (const KeypointMeasurement& m : measure(grays_[1 - r], toOther, 0, &tried))
+      aligned[static_cast<std::size_t>(m.point)] = 1;
+    for (std::size_t i = 0; i < points_.size(); ++i)
+      if (points_[i].reference == r && tried[i] && !aligned[i]) failed[i] = 1;
+  }
+  std::vector<MeasurableKeypoint> kept;
+  for (std::size_t i = 0; i < points_.size(); ++i)
+    if (!failed[i]) kept.push_back(points_[i]);
+  const int dropped = static_cast<int>(points_.size() - kept.size());
+  points_ = std::move(kept);
+  index();
+  return dropped;
+}
+
 std::vector<KeypointMeasurement> KeypointMeasurer::measure(const cv::Mat& gray8,
                                                            const RigidPose& T_Ak, int cap) const {
+  return measure(gray8, T_Ak, cap, nullptr);
+}
+
+std::vector<KeypointMeasurement> KeypointMeasurer::measure(const cv::Mat& gray8,
+                                                           const RigidPose& T_Ak, int cap,
+                                                           std::vector<char>* tried) const {
   std::vector<KeypointMeasurement> out;
+  if (tried) tried->assign(points_.size(), 0);
   if (points_.empty()) return out;
   if (gray8.type() != CV_8UC1) throw Error("KeypointMeasurer: the frame must be 8-bit grey");
   // Every point's projection through the lens in one call (NaN behind the camera).
@@ -64,9 +96,9 @@ std::vector<KeypointMeasurement> KeypointMeasurer::measure(const cv::Mat& gray8,
     if (!(inCamera[i].z > 1e-6)) projected[i] = {NAN, NAN};
   const double margin = aligner_.params().halfWindow + aligner_.params().maxShiftPx + 2.0;
   std::vector<std::pair<cv::Point2d, cv::Point2d>> pairs;
-  int tried = 0;
+  int triedCount = 0;
   for (const int visit : order_) {
-    if (cap > 0 && tried >= cap) break;
+    if (cap > 0 && triedCount >= cap) break;
     const auto i = static_cast<std::size_t>(visit);
     const cv::Point2d pK = projected[i];
     if (!(pK.x >= margin && pK.y >= margin && pK.x < gray8.cols - margin &&
@@ -81,7 +113,8 @@ std::vector<KeypointMeasurement> KeypointMeasurer::measure(const cv::Mat& gray8,
     const cv::Matx22d toK(referenceToK(0, 0), referenceToK(0, 1), referenceToK(1, 0),
                           referenceToK(1, 1));
     const cv::Matx22d J = toK.inv();  // frame offsets -> reference offsets
-    ++tried;
+    ++triedCount;
+    if (tried) (*tried)[i] = 1;
     const std::optional<PatchAlignment> a =
         aligner_.align(grays_[p.reference], cv::Point2d(p.pixel), J, gray8, pK);
     if (!a) continue;

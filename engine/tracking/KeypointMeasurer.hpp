@@ -44,6 +44,12 @@ class KeypointMeasurer {
   std::vector<KeypointMeasurement> measure(const cv::Mat& gray8, const RigidPose& T_Ak,
                                            int cap) const;
 
+  // Drops the points whose window, aligned into the other reference (T_AB: reference A -> B) at
+  // their projection there, fails: a keypoint match on repeated texture triangulates a point no
+  // frame confirms, yet each is tried in every frame. Points not tried there (out of its view, no
+  // local warp) stay. Returns how many were dropped; the indices of points() change.
+  int dropPointsFailingBetweenReferences(const RigidPose& T_AB);
+
   const std::vector<MeasurableKeypoint>& points() const { return points_; }
 
  private:
@@ -53,6 +59,11 @@ class KeypointMeasurer {
   std::vector<std::vector<int>> neighbours_;  // per point: nearest points of its reference
   std::vector<int> order_;
   PatchAligner aligner_;
+
+  void index();  // neighbours_ and order_ for points_
+  // measure(); `tried` (when given, one per point) marks the points whose alignment was tried.
+  std::vector<KeypointMeasurement> measure(const cv::Mat& gray8, const RigidPose& T_Ak, int cap,
+                                           std::vector<char>* tried) const;
 };
 
 }  // namespace reftrack
