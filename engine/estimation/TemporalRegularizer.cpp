@@ -39,10 +39,11 @@ std::optional<PoseEstimate> TemporalRegularizer::step(const RegularizedPoseEstim
     const Vector6d xPred = model_.predict(history_);
     const Matrix6d omegaPred = omega_ + model_.processNoise();
     e = estimator.estimateRegularised(m, xPred, omegaPred, alpha_);
-    // A solve from x_pred that does not converge, or spends its whole iteration budget, is on a
-    // long path between two minima (ViSP frame 81: 19-25 iterations, minima 24 mm / 1.4 degrees
-    // apart): it is solved again from the linear start and the lower cost kept. Not always: the
-    // lower cost of both starts picks a look-alike pose on repeated texture (research README).
+    // A solve from x_pred that does not converge, or spends its iteration budget (Ceres counts
+    // the start as an iteration: maxIterations - 1 steps or more), is on a long path between two
+    // minima (ViSP frame 81: 19-25 iterations, minima 24 mm / 1.4 degrees apart): it is solved
+    // again from the linear start and the lower cost kept. Not always: the lower cost of both
+    // starts picks a look-alike pose on repeated texture (research README).
     if (linearStart && (!e.converged || e.iterations >= estimator.options().maxIterations)) {
       const PoseEstimate fromLinear =
           estimator.estimateRegularised(m, xPred, omegaPred, alpha_, linearStart);

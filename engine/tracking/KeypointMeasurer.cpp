@@ -53,14 +53,14 @@ void KeypointMeasurer::index() {
 int KeypointMeasurer::dropPointsFailingBetweenReferences(const RigidPose& T_AB) {
   std::vector<char> failed(points_.size(), 0);
   for (int r = 0; r < 2; ++r) {
-    // This reference's points measured in the other's image, that camera the frame.
+    // Reference r's points measured in the other's image, that camera the frame.
     std::vector<char> tried;
     std::vector<char> aligned(points_.size(), 0);
     const RigidPose toOther = r == 0 ? T_AB : RigidPose::identity();
-    for (const KeypointMeasurement& m : measure(grays_[1 - r], toOther, 0, &tried))
+    for (const KeypointMeasurement& m : measure(grays_[1 - r], toOther, 0, r, &tried))
       aligned[static_cast<std::size_t>(m.point)] = 1;
     for (std::size_t i = 0; i < points_.size(); ++i)
-      if (points_[i].reference == r && tried[i] && !aligned[i]) failed[i] = 1;
+      if (tried[i] && !aligned[i]) failed[i] = 1;
   }
   std::vector<MeasurableKeypoint> kept;
   for (std::size_t i = 0; i < points_.size(); ++i)
@@ -73,11 +73,12 @@ int KeypointMeasurer::dropPointsFailingBetweenReferences(const RigidPose& T_AB) 
 
 std::vector<KeypointMeasurement> KeypointMeasurer::measure(const cv::Mat& gray8,
                                                            const RigidPose& T_Ak, int cap) const {
-  return measure(gray8, T_Ak, cap, nullptr);
+  return measure(gray8, T_Ak, cap, -1, nullptr);
 }
 
 std::vector<KeypointMeasurement> KeypointMeasurer::measure(const cv::Mat& gray8,
                                                            const RigidPose& T_Ak, int cap,
+                                                           int reference,
                                                            std::vector<char>* tried) const {
   std::vector<KeypointMeasurement> out;
   if (tried) tried->assign(points_.size(), 0);
@@ -100,6 +101,7 @@ std::vector<KeypointMeasurement> KeypointMeasurer::measure(const cv::Mat& gray8,
   for (const int visit : order_) {
     if (cap > 0 && triedCount >= cap) break;
     const auto i = static_cast<std::size_t>(visit);
+    if (reference >= 0 && points_[i].reference != reference) continue;
     const cv::Point2d pK = projected[i];
     if (!(pK.x >= margin && pK.y >= margin && pK.x < gray8.cols - margin &&
           pK.y < gray8.rows - margin))

@@ -61,9 +61,10 @@ class KeypointMeasurer {
   PatchAligner aligner_;
 
   void index();  // neighbours_ and order_ for points_
-  // measure(); `tried` (when given, one per point) marks the points whose alignment was tried.
+  // measure() of one reference's points (`reference` 0 / 1; -1: both); `tried` (when given, one
+  // per point) marks the points whose alignment was tried.
   std::vector<KeypointMeasurement> measure(const cv::Mat& gray8, const RigidPose& T_Ak, int cap,
-                                           std::vector<char>* tried) const;
+                                           int reference, std::vector<char>* tried) const;
 };
 
 }  // namespace reftrack

@@ -324,7 +324,7 @@ struct PoseTracker::Impl {
         map.camera, std::move(keypoints), refA.matchable.gray8, refB.matchable.gray8, ap);
     // A point whose window the other reference does not confirm is mostly one no frame confirms
     // (desk: 225 of 408 dropped, they aligned in < 10% of frames and took 56% of the alignments);
-    // dropping them: desk CPU per frame x1.17 faster, desk p95 0.658 -> 0.603 px, Kinect pairs
+    // dropping them: desk CPU per frame x1.18 faster, desk p95 0.658 -> 0.603 px, Kinect pairs
     // within 5 px 120 -> 140 (research README, "Points the other reference does not confirm").
     keypointMeasurer->dropPointsFailingBetweenReferences(map.T_AB());
     pointReliability.resize(map.matches.size() + keypointMeasurer->points().size());
