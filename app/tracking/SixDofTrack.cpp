@@ -121,6 +121,8 @@ int runSixDofTrack(const SixDofTrackOptions& o) {
   std::vector<double> ms, relocMs, locateCpuMs, relocCpuMs;
   // What stopped each way back (RecoveryStage), counted per attempt.
   std::map<std::string, int> startStops, relocStops;
+  // Lost frames searched on the budget's reserve (they looked like the scene).
+  int aheadOfBudget = 0;
   const InterruptibleWork interruptible;  // Ctrl-C ends the loop; the outputs are then finished
   while (!interruptRequested()) {
     const std::optional<Frame> frame = input.next();
@@ -148,6 +150,7 @@ int runSixDofTrack(const SixDofTrackOptions& o) {
       ++relocStops[toString(multi.relocalisation.stop)];
     }
     if (multi.start != RecoveryStage::None) ++startStops[toString(multi.start)];
+    aheadOfBudget += multi.recovery.aheadOfBudget ? 1 : 0;
     // Issue 32: a pose whose predicted overlay error exceeds pose.max_predicted_error_px.
     const char* status = multi.uncertain ? "uncertain" : toString(r.state);
     uncertain += multi.uncertain ? 1 : 0;
@@ -247,6 +250,11 @@ int runSixDofTrack(const SixDofTrackOptions& o) {
   if (!startStops.empty())
     std::printf("recovery while not tracking, per frame, the start near a reference: %s\n",
                 breakdown(startStops).c_str());
+  if (aheadOfBudget > 0)
+    std::printf(
+        "recovery: %d lost frame(s) searched on the budget's reserve: they looked like the "
+        "references (relocalisation.resemblance_min_score)\n",
+        aheadOfBudget);
   if (!relocStops.empty())
     std::printf("relocalisation attempts, what stopped each: %s\n", breakdown(relocStops).c_str());
   if (!o.trajectory.empty()) std::printf("trajectory: %s\n", o.trajectory.string().c_str());

@@ -69,6 +69,12 @@ void RelocalisationParams::fields(Self& p, const Field& field) {
       .help(
           "... after a burst of this much (ms), refilled when tracking: the first searches come at "
           "once");
+  field("resemblance_min_score", p.resemblanceMinScore, Range{0.0, 1.0})
+      .help(
+          "While lost, a frame correlating this much with a reference's small image looks like "
+          "the scene; 0: off");
+  field("budget_reserve_share", p.budgetReserveShare, Range{0.0, 0.99})
+      .help("... and may spend this share of the burst, kept for such frames (0: none kept)");
   field("min_inlier_cells", p.minInlierCells, Range{1, 16})
       .help("The inliers must cover at least this many cells of a 4x4 grid over the frame");
   field("max_rotation_sigma_deg", p.maxRotationSigmaDeg, Range{0.0, 180.0})

@@ -67,6 +67,18 @@ struct RelocalisationParams : ParamSection<RelocalisationParams> {
   // (24%).
   double budgetMsPerFrame = 3.0;
   double budgetBurstMs = 200.0;
+  // While lost, a frame whose small blurred image correlates with a reference's at least this
+  // much (SceneResemblance, 40 px wide, shifts of +-2 px) looks like the scene: it may spend the
+  // part of the burst kept for such frames (budget_reserve_share of it), so the search runs when
+  // the scene comes back instead of when the budget next allows (`bench-real --order away:900`:
+  // back after 6 and 7 frames with no reserve, 0 with no budget at all). Measured on the shared
+  // clips (tests SceneResemblanceRealFootage.*): every frame of a clip against its two references
+  // 0.60-1.0 (desk 0/40; shelf 0/60 0.77-1.0, ViSP 0/40 0.91-1.0, Kinect 0/40 frames 0-70
+  // 0.72-1.0); another scene's frames at most 0.29 (desk frames against the shelf's references),
+  // the Kinect kitchen away from its table (frames 110-170) at most 0.15. 0: no reserve, no
+  // resemblance asked.
+  double resemblanceMinScore = 0.5;
+  double budgetReserveShare = 0.5;
   // The inliers must cover at least this many cells of a 4x4 grid over the frame: a pose held
   // up by one small patch of the image is too weakly constrained to hand to the tracker.
   int minInlierCells = 3;

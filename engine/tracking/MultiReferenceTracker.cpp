@@ -16,6 +16,7 @@
 #include "engine/features/BlankFrame.hpp"
 #include "engine/relocalisation/RelocalisationBudget.hpp"
 #include "engine/relocalisation/Relocaliser.hpp"
+#include "engine/relocalisation/SceneResemblance.hpp"
 #include "engine/tracking/PredictedOverlayError.hpp"
 #include "engine/tracking/ReferenceSelector.hpp"
 
@@ -92,6 +93,9 @@ struct MultiReferenceTracker::Impl {
   // work (costModel, every unit of work counted since construction in `work`) or, with a budget
   // clock, the time that clock measures.
   RelocalisationBudget budget{0.0, 0.0};
+  // Whether a lost frame looks like a reference view (relocalisation.resemblance_min_score > 0):
+  // such a frame may spend the budget's reserve.
+  std::unique_ptr<SceneResemblance> resemblance;
   RecoveryCostModel costModel;
   RecoveryWork work;
   std::function<double()> budgetClock;
@@ -140,7 +144,15 @@ struct MultiReferenceTracker::Impl {
     }
     noticePending = relocaliser == nullptr && params.relocalisation.enabled;
     framesSinceRelocalisation = params.relocalisation.attemptEveryFrames;  // due at once
-    budget.configure(params.relocalisation.budgetMsPerFrame, params.relocalisation.budgetBurstMs);
+    const bool resemble = params.relocalisation.resemblanceMinScore > 0.0;
+    budget.configure(params.relocalisation.budgetMsPerFrame, params.relocalisation.budgetBurstMs,
+                     resemble ? params.relocalisation.budgetReserveShare : 0.0);
+    resemblance.reset();
+    if (resemble) {
+      std::vector<cv::Mat> images;
+      for (const ReferenceView& v : map.views) images.push_back(v.image);
+      resemblance = std::make_unique<SceneResemblance>(images);
+    }
     costModel = RecoveryCostModel::defaults(params.relocalisation.keypoints);
   }
 
@@ -403,7 +415,20 @@ PoseTrackingResult MultiReferenceTracker::Impl::recover(const cv::Mat& frame,
   // reference (a few ms) and the relocaliser (tens of ms). When it holds nothing the frame is
   // left alone, unless the last pose was refused as a jump (its relocalisation comes at once).
   const bool budgetAllows = budget.lostFrame();
-  if (!budgetAllows && !afterJump) {
+  // A frame that looks like a reference view may spend the reserve: the scene may be back. The
+  // look is charged too: its modelled cost, or the budget clock's time.
+  double resemblanceMs = 0.0;
+  if (!budgetAllows && !afterJump && resemblance && budget.reserveHolds()) {
+    const double clockStart = budgetClock ? budgetClock() : 0.0;
+    out.recovery.resemblance = resemblance->score(frame);
+    out.recovery.aheadOfBudget =
+        out.recovery.resemblance >= params.relocalisation.resemblanceMinScore;
+    resemblanceMs = budgetClock ? budgetClock() - clockStart
+                                : SceneResemblance::kModelledMsPerMegapixel * frameMegapixels;
+  }
+  if (!budgetAllows && !afterJump && !out.recovery.aheadOfBudget) {
+    out.recovery.modelledMs = out.recovery.chargedMs = resemblanceMs;
+    budget.spent(resemblanceMs);
     PoseTrackingResult r;
     r.state = lastPose ? TrackingState::Lost : TrackingState::Initialising;
     r.message =
@@ -415,6 +440,8 @@ PoseTrackingResult MultiReferenceTracker::Impl::recover(const cv::Mat& frame,
   // A blank frame (a covered lens, black) has nothing to find and costs nothing: so a covered
   // lens leaves the budget whole for the first frame after it.
   if (isBlankFrame(frame)) {
+    out.recovery.modelledMs = out.recovery.chargedMs = resemblanceMs;
+    budget.spent(resemblanceMs);
     PoseTrackingResult r;
     r.state = TrackingState::Lost;  // as the start near a reference reports a black frame
     r.message = "blank frame (black, covered or uniform): nothing to search";
@@ -427,16 +454,19 @@ PoseTrackingResult MultiReferenceTracker::Impl::recover(const cv::Mat& frame,
     Impl& impl;
     RecoveryReport& report;
     const RecoveryWork workStart;
-    const double clockStart, cpuStart;
+    const double clockStart, cpuStart, lookMs;
     ~Charge() {
       report.ran = true;
       report.work = impl.work - workStart;
       report.modelledMs = impl.costModel.ms(report.work);
       report.cpuMs = processCpuMs() - cpuStart;
       report.chargedMs = impl.budgetClock ? impl.budgetClock() - clockStart : report.modelledMs;
+      report.modelledMs += lookMs;  // the resemblance asked before the search
+      report.chargedMs += lookMs;
       impl.budget.spent(report.chargedMs);
     }
-  } charge{*this, out.recovery, work, budgetClock ? budgetClock() : 0.0, processCpuMs()};
+  } charge{*this,          out.recovery, work, budgetClock ? budgetClock() : 0.0,
+           processCpuMs(), resemblanceMs};
   RelocalisationReport& relocalisation = out.relocalisation;
   if (!afterJump && lastPose && active.valid() &&
       framesSinceTracked <= params.references.reseedFrames) {

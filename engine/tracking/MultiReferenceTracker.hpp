@@ -12,6 +12,7 @@
 // volume, which the pair best placed for it refines and verifies on the same frame.
 #include <Eigen/Core>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -49,6 +50,10 @@ struct RecoveryReport {
   double modelledMs = 0.0;  // its modelled cost (RecoveryCostModel): the same on any machine
   double chargedMs = 0.0;   // what the budget was charged: modelledMs, or the budget clock's time
   double cpuMs = 0.0;       // the process CPU time it took, measured (reported, decides nothing)
+  // Asked when the budget held only its reserve: how much the frame looks like a reference view
+  // (SceneResemblance::score; NaN: not asked), and whether that let it spend the reserve.
+  double resemblance = std::numeric_limits<double>::quiet_NaN();
+  bool aheadOfBudget = false;
 };
 
 struct MultiReferenceResult {

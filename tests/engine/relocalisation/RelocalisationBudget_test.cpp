@@ -64,7 +64,40 @@ TEST(RelocalisationBudget, AZeroBurstStillTriesTheFirstLostFrame) {
   EXPECT_DOUBLE_EQ(budget.spentInAll(), 10.0);
 }
 
+// A reserve of half the 100 ms burst: attempts of 40 ms on any frame stop once the bucket is down
+// to 50 ms and come whenever it is back above it; the 50 ms stay for a frame that looks like the
+// scene, which may then try at once (reserveHolds). Spent in all: still at most the burst, the
+// rate per lost frame and one attempt's overshoot.
+TEST(RelocalisationBudget, AReserveIsKeptForFramesThatLookLikeTheScene) {
+  RelocalisationBudget budget(3.0, 100.0, 0.5);
+  std::vector<int> attempted;
+  for (int frame = 0; frame < 60; ++frame)
+    if (budget.lostFrame()) {
+      attempted.push_back(frame);
+      budget.spent(40.0);
+    }
+  ASSERT_GE(attempted.size(), 4u);
+  EXPECT_EQ(attempted[0], 0);   // 103 -> 63
+  EXPECT_EQ(attempted[1], 1);   // 66 -> 26: the reserve is reached
+  EXPECT_EQ(attempted[2], 10);  // 26 + 3 * 9 = 53 > 50
+  for (std::size_t i = 3; i < attempted.size(); ++i) {
+    EXPECT_GE(attempted[i] - attempted[i - 1], 13) << i;
+    EXPECT_LE(attempted[i] - attempted[i - 1], 14) << i;
+  }
+  // Between attempts the reserve holds: a frame that looks like the scene may try at once.
+  EXPECT_FALSE(budget.lostFrame());
+  EXPECT_TRUE(budget.reserveHolds());
+  // Once it is spent, neither kind of frame tries until the bucket is positive again.
+  budget.spent(budget.available() + 1.0);
+  EXPECT_FALSE(budget.reserveHolds());
+  EXPECT_FALSE(budget.lostFrame());
+  EXPECT_LE(budget.spentInAll(), 100.0 + 3.0 * 62 + 40.0);
+}
+
 TEST(RelocalisationBudget, BadRatesAreClearErrors) {
+  EXPECT_THROW(RelocalisationBudget(3.0, 100.0, 1.0), Error);
+  EXPECT_THROW(RelocalisationBudget(3.0, 100.0, -0.1), Error);
+  EXPECT_THROW(RelocalisationBudget(3.0, 100.0, std::nan("")), Error);
   EXPECT_THROW(RelocalisationBudget(-1.0, 10.0), Error);
   EXPECT_THROW(RelocalisationBudget(1.0, std::nan("")), Error);
   EXPECT_THROW(RelocalisationBudget(INFINITY, 10.0), Error);

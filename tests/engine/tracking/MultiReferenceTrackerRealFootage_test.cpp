@@ -310,6 +310,57 @@ TEST_F(MultiReferenceTrackerRealFootage, TheSameFramesGiveTheSameTrajectoryUnder
                                                        std::to_string(quiet.relocalised));
 }
 
+// The scene coming back after a long look elsewhere: desk frames 0-24, 90 frames of an unrelated
+// scene (random textures: every search fails and the budget settles to its rate), then frames
+// 25-59. A frame that looks like the references (relocalisation.resemblance_min_score) may spend
+// the reserve kept for it, so the first frame back is searched and tracked; without it the
+// return waits for the budget (here 14 frames). Charged while away: within the burst and the
+// rate per frame, as before.
+TEST_F(MultiReferenceTrackerRealFootage, TheSceneComingBackIsSearchedAtOnce) {
+  std::vector<cv::Mat> frames;
+  for (int i = 0; i < 25; ++i) frames.push_back(clip_->frames[static_cast<std::size_t>(i)]);
+  cv::RNG rng(11);
+  for (int i = 0; i < 90; ++i) {
+    cv::Mat texture(clip_->frames[0].size(), CV_8UC1);
+    rng.fill(texture, cv::RNG::UNIFORM, 0, 256);
+    cv::GaussianBlur(texture, texture, cv::Size(0, 0), 2.0);
+    frames.push_back(texture);
+  }
+  const std::size_t back = frames.size();
+  for (int i = 25; i < 60; ++i) frames.push_back(clip_->frames[static_cast<std::size_t>(i)]);
+  const auto framesToReturn = [&](const TrackerParams& params, double& chargedAway) {
+    MultiReferenceTracker tracker(clip_->map, params);
+    int waited = -1;
+    for (std::size_t k = 0; k < frames.size(); ++k) {
+      const MultiReferenceResult r = tracker.process(frames[k]);
+      if (k == back) chargedAway = tracker.recoveryChargedMs();
+      if (k >= back && r.tracking.state == TrackingState::Tracking) {
+        waited = static_cast<int>(k - back);
+        const double px = clip_->cubeError(25 + waited, *r.tracking.worldToCamera);
+        EXPECT_LT(px, 2.0) << "the first pose back, frame " << 25 + waited;
+        break;
+      }
+      EXPECT_FALSE(k > 24 && k < back && r.tracking.state == TrackingState::Tracking)
+          << "a pose on a random texture, frame " << k;
+    }
+    return waited;
+  };
+  double chargedWith = 0.0, chargedWithout = 0.0;
+  const int with = framesToReturn(TrackerParams{}, chargedWith);
+  TrackerParams off;
+  off.relocalisation.resemblanceMinScore = 0.0;
+  const int without = framesToReturn(off, chargedWithout);
+  EXPECT_GE(with, 0);
+  EXPECT_LE(with, 1);
+  EXPECT_GT(without, with);  // the budget alone made it wait
+  const TrackerParams defaults;
+  const double bound = defaults.relocalisation.budgetBurstMs +
+                       defaults.relocalisation.budgetMsPerFrame * 91 + 60.0;  // + one attempt
+  EXPECT_LE(chargedWith, bound);
+  RecordProperty("frames_to_return_with_without",
+                 std::to_string(with) + " " + std::to_string(without));
+}
+
 // References 200 and 240: cold starts near them on frames 330-338 once gave poses two chessboard
 // squares off (93 px) that kept 13-18 matches to "distinctive" corners; the ratio-test keypoints
 // (relocalisation.min_keypoint_support) refuse them. Each frame is either refused or right.
