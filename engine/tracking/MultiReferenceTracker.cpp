@@ -416,19 +416,18 @@ PoseTrackingResult MultiReferenceTracker::Impl::recover(const cv::Mat& frame,
   // left alone, unless the last pose was refused as a jump (its relocalisation comes at once).
   const bool budgetAllows = budget.lostFrame();
   // A frame that looks like a reference view may spend the reserve: the scene may be back. The
-  // look is charged too: its modelled cost, or the budget clock's time.
-  double resemblanceMs = 0.0;
+  // look is charged at once (its modelled cost, or the budget clock's time); a search after it
+  // adds its own charge.
   if (!budgetAllows && !afterJump && resemblance && budget.reserveHolds()) {
     const double clockStart = budgetClock ? budgetClock() : 0.0;
     out.recovery.resemblance = resemblance->score(frame);
     out.recovery.aheadOfBudget =
         out.recovery.resemblance >= params.relocalisation.resemblanceMinScore;
-    resemblanceMs = budgetClock ? budgetClock() - clockStart
-                                : SceneResemblance::kModelledMsPerMegapixel * frameMegapixels;
+    out.recovery.modelledMs = SceneResemblance::kModelledMsPerMegapixel * frameMegapixels;
+    out.recovery.chargedMs = budgetClock ? budgetClock() - clockStart : out.recovery.modelledMs;
+    budget.spent(out.recovery.chargedMs);
   }
   if (!budgetAllows && !afterJump && !out.recovery.aheadOfBudget) {
-    out.recovery.modelledMs = out.recovery.chargedMs = resemblanceMs;
-    budget.spent(resemblanceMs);
     PoseTrackingResult r;
     r.state = lastPose ? TrackingState::Lost : TrackingState::Initialising;
     r.message =
@@ -440,8 +439,6 @@ PoseTrackingResult MultiReferenceTracker::Impl::recover(const cv::Mat& frame,
   // A blank frame (a covered lens, black) has nothing to find and costs nothing: so a covered
   // lens leaves the budget whole for the first frame after it.
   if (isBlankFrame(frame)) {
-    out.recovery.modelledMs = out.recovery.chargedMs = resemblanceMs;
-    budget.spent(resemblanceMs);
     PoseTrackingResult r;
     r.state = TrackingState::Lost;  // as the start near a reference reports a black frame
     r.message = "blank frame (black, covered or uniform): nothing to search";
@@ -454,19 +451,18 @@ PoseTrackingResult MultiReferenceTracker::Impl::recover(const cv::Mat& frame,
     Impl& impl;
     RecoveryReport& report;
     const RecoveryWork workStart;
-    const double clockStart, cpuStart, lookMs;
+    const double clockStart, cpuStart;
     ~Charge() {
       report.ran = true;
       report.work = impl.work - workStart;
-      report.modelledMs = impl.costModel.ms(report.work);
+      const double workMs = impl.costModel.ms(report.work);
+      const double searchMs = impl.budgetClock ? impl.budgetClock() - clockStart : workMs;
       report.cpuMs = processCpuMs() - cpuStart;
-      report.chargedMs = impl.budgetClock ? impl.budgetClock() - clockStart : report.modelledMs;
-      report.modelledMs += lookMs;  // the resemblance asked before the search
-      report.chargedMs += lookMs;
-      impl.budget.spent(report.chargedMs);
+      report.modelledMs += workMs;  // after the look's charge, when one was asked
+      report.chargedMs += searchMs;
+      impl.budget.spent(searchMs);
     }
-  } charge{*this,          out.recovery, work, budgetClock ? budgetClock() : 0.0,
-           processCpuMs(), resemblanceMs};
+  } charge{*this, out.recovery, work, budgetClock ? budgetClock() : 0.0, processCpuMs()};
   RelocalisationReport& relocalisation = out.relocalisation;
   if (!afterJump && lastPose && active.valid() &&
       framesSinceTracked <= params.references.reseedFrames) {
