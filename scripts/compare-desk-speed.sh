@@ -4,7 +4,7 @@
 # `bench-real --methods reftrack --order sequence --passes 3` (median thread CPU per frame, one
 # thread) and `track --out-csv` (median of the column ms_total, wall clock per frame, OpenCV's
 # threads as a user has them). Prints every run, each build's median of the run medians, and the
-# ratio other / this. Usage: scripts/compare-desk-speed.sh OTHER_REFTRACK [RUNS (default 4)]
+# ratio other / this; then each stage's median (the CSV's ms_* columns: where a difference lies). Usage: scripts/compare-desk-speed.sh OTHER_REFTRACK [RUNS (default 4)]
 # (this build: build/app/reftrack, or $REFTRACK_BUILD_DIR/app/reftrack).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -42,6 +42,7 @@ for run in $(seq "$runs"); do
     wall="$(median_ms_total "$work/$build-$run.csv")"
     echo "run $run $build: thread CPU median $cpu ms, ms_total median $wall ms"
     echo "$build $cpu $wall" >>"$work/runs.txt"
+    cp "$work/$build-$run.csv" "$work/stages-$build-$run.csv"
   done
 done
 python3 - "$work/runs.txt" <<'PY'
@@ -53,4 +54,22 @@ for b in ("this", "other"):
     print(f"{b}: thread CPU {m[b][0]:.3f} ms, ms_total {m[b][1]:.3f} ms (medians of the runs)")
 print(f"other / this: thread CPU x{m['other'][0] / m['this'][0]:.3f}, "
       f"ms_total x{m['other'][1] / m['this'][1]:.3f}")
+PY
+python3 - "$work" <<'PY'
+import csv, glob, statistics, sys
+def stages(build):  # per stage: the median over the runs of its per-frame median
+    runs = [list(csv.DictReader(open(f))) for f in sorted(glob.glob(f"{sys.argv[1]}/stages-{build}-*.csv"))]
+    columns = [c for c in runs[0][0] if c.startswith("ms_")] if runs and runs[0] else []
+    out = {}
+    for c in columns:
+        medians = [statistics.median(v) for v in
+                   ([float(r[c]) for r in rows if r.get(c)] for rows in runs) if v]
+        if medians:
+            out[c] = statistics.median(medians)
+    return out
+this, other = stages("this"), stages("other")
+print("stage medians (ms per frame; track, OpenCV's threads): stage this other")
+for c in list(this) + [c for c in other if c not in this]:
+    t, o = this.get(c), other.get(c)
+    print(f"  {c[3:]:<16} {'-' if t is None else f'{t:.3f}':>7} {'-' if o is None else f'{o:.3f}':>7}")
 PY

@@ -51,7 +51,7 @@ class PatchAligner {
  private:
   PatchAlignerParams params_;
   // Scratch (per aligner: an aligner is used by one thread at a time).
-  mutable std::vector<float> templ_, gx_, gy_, window_;
+  mutable std::vector<float> templ_, t_, gx_, gy_, window_;
 };
 
 }  // namespace reftrack
