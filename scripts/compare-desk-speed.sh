@@ -4,7 +4,8 @@
 # `bench-real --methods reftrack --order sequence --passes 3` (median thread CPU per frame, one
 # thread) and `track --out-csv` (median of the column ms_total, wall clock per frame, OpenCV's
 # threads as a user has them). Prints every run, each build's median of the run medians, and the
-# ratio other / this; then each stage's median (the CSV's ms_* columns: where a difference lies). Usage: scripts/compare-desk-speed.sh OTHER_REFTRACK [RUNS (default 4)]
+# ratio other / this; then each stage's median (the CSV's ms_* columns: where a difference lies).
+# Usage: scripts/compare-desk-speed.sh OTHER_REFTRACK [RUNS (default 4)]
 # (this build: build/app/reftrack, or $REFTRACK_BUILD_DIR/app/reftrack).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -42,7 +43,6 @@ for run in $(seq "$runs"); do
     wall="$(median_ms_total "$work/$build-$run.csv")"
     echo "run $run $build: thread CPU median $cpu ms, ms_total median $wall ms"
     echo "$build $cpu $wall" >>"$work/runs.txt"
-    cp "$work/$build-$run.csv" "$work/stages-$build-$run.csv"
   done
 done
 python3 - "$work/runs.txt" <<'PY'
@@ -58,7 +58,7 @@ PY
 python3 - "$work" <<'PY'
 import csv, glob, statistics, sys
 def stages(build):  # per stage: the median over the runs of its per-frame median
-    runs = [list(csv.DictReader(open(f))) for f in sorted(glob.glob(f"{sys.argv[1]}/stages-{build}-*.csv"))]
+    runs = [list(csv.DictReader(open(f))) for f in sorted(glob.glob(f"{sys.argv[1]}/{build}-*.csv"))]
     columns = [c for c in runs[0][0] if c.startswith("ms_")] if runs and runs[0] else []
     out = {}
     for c in columns:

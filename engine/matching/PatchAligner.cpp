@@ -26,15 +26,6 @@ PatchAligner::PatchAligner(PatchAlignerParams params) : params_(params) { params
 
 namespace {
 
-// Bilinear sample of an 8-bit image at (x, y), known to be inside [0, cols-1) x [0, rows-1).
-inline float bilinear(const cv::Mat& image, double x, double y) {
-  const int x0 = static_cast<int>(x), y0 = static_cast<int>(y);
-  const float ax = static_cast<float>(x - x0), ay = static_cast<float>(y - y0);
-  const uchar* p = image.ptr<uchar>(y0) + x0;
-  const std::size_t step = image.step[0];
-  return (1 - ay) * ((1 - ax) * p[0] + ax * p[1]) + ay * ((1 - ax) * p[step] + ax * p[step + 1]);
-}
-
 // The windows' arrays are padded with zeros to a multiple of the SIMD width.
 constexpr int kLanes = 4;
 constexpr float kOffset = 128.0f;  // target samples are stored minus this (smaller float sums)
