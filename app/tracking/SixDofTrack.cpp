@@ -23,8 +23,10 @@ namespace reftrack::app {
 
 namespace {
 
-const char* kStages[] = {"corners", "frame-to-frame", "seed",      "initialise", "match A",
-                         "match B", "outliers",       "keypoints", "pose",       "verify"};
+// PoseTracker's stages in the order they run (a frame runs frame-to-frame or seed or initialise).
+const char* kStages[] = {"corners", "frame-to-frame", "seed",    "initialise", "frame windows",
+                         "match A", "match B",        "measure", "outliers",   "keypoints",
+                         "pose",    "verify",         "confirm"};
 
 // A CSV field: quoted, inner quotes doubled (messages hold commas).
 std::string quoted(const std::string& text) {

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numeric>
 #include <opencv2/calib3d.hpp>
+#include <opencv2/core/utility.hpp>
+#include <optional>
 #include <random>
 #include <utility>
 
@@ -22,7 +24,8 @@ constexpr int kNeighbours = 6;
 KeypointMeasurer::KeypointMeasurer(PinholeCamera camera, std::vector<MeasurableKeypoint> points,
                                    const cv::Mat& grayA, const cv::Mat& grayB,
                                    PatchAlignerParams params)
-    : camera_(std::move(camera)), points_(std::move(points)), aligner_(params) {
+    : camera_(std::move(camera)), points_(std::move(points)), alignerParams_(params) {
+  alignerParams_.check();
   if (grayA.type() != CV_8UC1 || grayB.type() != CV_8UC1)
     throw Error("KeypointMeasurer: references must be 8-bit grey");
   grays_[0] = grayA;
@@ -95,18 +98,25 @@ std::vector<KeypointMeasurement> KeypointMeasurer::measure(const cv::Mat& gray8,
                     camera_.distortion(), projected);
   for (std::size_t i = 0; i < projected.size(); ++i)
     if (!(inCamera[i].z > 1e-6)) projected[i] = {NAN, NAN};
-  const double margin = aligner_.params().halfWindow + aligner_.params().maxShiftPx + 2.0;
+  const double margin = alignerParams_.halfWindow + alignerParams_.maxShiftPx + 2.0;
+  // First the alignments to try (in the visiting order, up to the cap), then the alignments
+  // themselves, split over OpenCV's threads: each aligns its own share with its own aligner
+  // (scratch) and writes its own slots, so the result is the same on any number of threads.
+  struct Alignment {
+    std::size_t point;
+    cv::Matx22d J;  // frame offsets -> reference offsets
+    cv::Point2d start;
+  };
+  std::vector<Alignment> planned;
   std::vector<std::pair<cv::Point2d, cv::Point2d>> pairs;
-  int triedCount = 0;
   for (const int visit : order_) {
-    if (cap > 0 && triedCount >= cap) break;
+    if (cap > 0 && static_cast<int>(planned.size()) >= cap) break;
     const auto i = static_cast<std::size_t>(visit);
     if (reference >= 0 && points_[i].reference != reference) continue;
     const cv::Point2d pK = projected[i];
     if (!(pK.x >= margin && pK.y >= margin && pK.x < gray8.cols - margin &&
           pK.y < gray8.rows - margin))
       continue;
-    const MeasurableKeypoint& p = points_[i];
     cv::Matx33d referenceToK;
     const auto pixelOf = [&](std::size_t k) { return points_[k].pixel; };
     if (fitLocalAffine(i, neighbours_[i], pixelOf, projected, pairs, referenceToK) !=
@@ -114,14 +124,31 @@ std::vector<KeypointMeasurement> KeypointMeasurer::measure(const cv::Mat& gray8,
       continue;
     const cv::Matx22d toK(referenceToK(0, 0), referenceToK(0, 1), referenceToK(1, 0),
                           referenceToK(1, 1));
-    const cv::Matx22d J = toK.inv();  // frame offsets -> reference offsets
-    ++triedCount;
+    planned.push_back({i, toK.inv(), pK});
     if (tried) (*tried)[i] = 1;
-    const std::optional<PatchAlignment> a =
-        aligner_.align(grays_[p.reference], cv::Point2d(p.pixel), J, gray8, pK);
-    if (!a) continue;
-    out.push_back({visit, a->position,
-                   cv::Point2f(static_cast<float>(pK.x), static_cast<float>(pK.y)), a->sigmaPx});
+  }
+  std::vector<std::optional<PatchAlignment>> aligned(planned.size());
+  // One share per thread; an alignment is ~2 us, so a share below ~32 is not worth a task.
+  const int shares = std::clamp(static_cast<int>(planned.size()) / 32, 1,
+                                std::max(1, cv::getNumThreads()));
+  cv::parallel_for_(
+      cv::Range(0, static_cast<int>(planned.size())),
+      [&](const cv::Range& range) {
+        const PatchAligner aligner(alignerParams_);
+        for (int k = range.start; k < range.end; ++k) {
+          const Alignment& a = planned[static_cast<std::size_t>(k)];
+          const MeasurableKeypoint& p = points_[a.point];
+          aligned[static_cast<std::size_t>(k)] =
+              aligner.align(grays_[p.reference], cv::Point2d(p.pixel), a.J, gray8, a.start);
+        }
+      },
+      shares);
+  for (std::size_t k = 0; k < planned.size(); ++k) {
+    if (!aligned[k]) continue;
+    const cv::Point2d& pK = planned[k].start;
+    out.push_back({static_cast<int>(planned[k].point), aligned[k]->position,
+                   cv::Point2f(static_cast<float>(pK.x), static_cast<float>(pK.y)),
+                   aligned[k]->sigmaPx});
   }
   return out;
 }

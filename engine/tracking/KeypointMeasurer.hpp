@@ -41,6 +41,7 @@ class KeypointMeasurer {
   // measured: their layers mostly hold the same scene points (triangulated from their A <-> B
   // keypoint matches), and the two templates' measurements of a point, each consistent with its
   // own reference's keypoint pixel, average out the two pixels' disagreement with the point.
+  // The alignments are split over OpenCV's threads; the result does not depend on their number.
   std::vector<KeypointMeasurement> measure(const cv::Mat& gray8, const RigidPose& T_Ak,
                                            int cap) const;
 
@@ -58,7 +59,7 @@ class KeypointMeasurer {
   cv::Mat grays_[2];
   std::vector<std::vector<int>> neighbours_;  // per point: nearest points of its reference
   std::vector<int> order_;
-  PatchAligner aligner_;
+  PatchAlignerParams alignerParams_;  // each measure() share aligns with its own PatchAligner
 
   void index();  // neighbours_ and order_ for points_
   // measure() of one reference's points (`reference` 0 / 1; -1: both); `tried` (when given, one

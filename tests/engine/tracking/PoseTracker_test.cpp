@@ -4,6 +4,7 @@
 
 #include <functional>
 #include <limits>
+#include <opencv2/core/utility.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "PlaneWorld.hpp"
@@ -80,6 +81,44 @@ TEST(PoseTracker, KeypointMeasurementsJoinThePoseAndKeepItExact) {
   RecordProperty("max_translation_error_mm", std::to_string(maxT * 1000));
   RecordProperty("max_rotation_error_deg", std::to_string(maxR));
   RecordProperty("fewest_keypoint_measurements", std::to_string(fewest));
+}
+
+// The stages that run on OpenCV's threads (FAST bands, Harris responses, corner refinement, the
+// prediction beside the frame windows, V_A beside V_B, the keypoint alignments and their terms)
+// give the same poses to the byte on one thread and on two: each part writes only its own output.
+TEST(PoseTracker, ThePosesAreTheSameOnOneThreadAndOnTwo) {
+  const PlaneWorld world;
+  const ReferenceMap map = world.map();
+  TrackerParams params;
+  params.wideBaseline.keypointPointsAt320x240 = 100000;
+  std::vector<PoseTracker::VerificationKeypoint> inA;
+  const RigidPose AtoWorld = world.T_A.inverse();
+  for (const ReferenceCorner& c : map.cornersA)
+    inA.push_back({AtoWorld * world.backProject(c.pixel), c.pixel});
+  const auto track = [&](int threads) {
+    const int before = cv::getNumThreads();
+    cv::setNumThreads(threads);
+    PoseTracker tracker(map, params);
+    tracker.setVerificationKeypoints(inA, {});
+    std::vector<Vector6d> poses;
+    int keypointTerms = 0;
+    for (int k = 0; k <= 12; ++k) {
+      const PoseTrackingResult r = tracker.process(world.render(pathPose(3 * k), 100 + k));
+      poses.push_back(r.T_Ak ? r.T_Ak->toVector6() : Vector6d::Constant(-1.0));
+      keypointTerms += r.keypointMeasurements;
+    }
+    cv::setNumThreads(before);
+    return std::pair(poses, keypointTerms);
+  };
+  const auto [one, termsOne] = track(1);
+  const auto [two, termsTwo] = track(2);
+  EXPECT_GT(termsOne, 12 * 100);  // the keypoint stage ran on every frame
+  EXPECT_EQ(termsOne, termsTwo);
+  ASSERT_EQ(one.size(), two.size());
+  for (std::size_t k = 0; k < one.size(); ++k) {
+    EXPECT_NE(one[k][0], -1.0) << "frame " << k << " lost";
+    for (int i = 0; i < 6; ++i) EXPECT_EQ(one[k][i], two[k][i]) << "frame " << k << ", entry " << i;
+  }
 }
 
 TEST(PoseTracker, BlackAndTexturelessFramesAreLostAndRecoveryFollows) {
