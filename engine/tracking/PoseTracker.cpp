@@ -535,7 +535,8 @@ struct PoseTracker::Impl {
   FrameCorners detectCorners(const cv::Mat& gray);
   void matchFrameToFrame(const FrameCorners& c, double scale, FrameMatches& m);
   void matchWideBaseline(const MatchableFrame& matchable, bool wideSeed, FrameMatches& m,
-                         PoseTrackingResult& r);
+                         PoseTrackingResult& r, const MapsToPrevious* mapsA = nullptr,
+                         const MapsToPrevious* mapsB = nullptr);
   bool verifyPose(const cv::Mat& frame, const cv::Mat& gray, const RigidPose& TAk, bool trackedOn,
                   PoseTrackingResult& r);
   void matchInitial(const cv::Mat& gray, const FrameCorners& c, FrameMatches& m);
@@ -604,23 +605,25 @@ void PoseTracker::Impl::matchFrameToFrame(const FrameCorners& c, double scale, F
 // V_B through W = L H (Eq. 18-19), from the previous frame's matches (or the seed's projections,
 // H = identity, candidates within wide_baseline.seed_search).
 void PoseTracker::Impl::matchWideBaseline(const MatchableFrame& matchable, bool wideSeed,
-                                          FrameMatches& m, PoseTrackingResult& r) {
+                                          FrameMatches& m, PoseTrackingResult& r,
+                                          const MapsToPrevious* mapsA,
+                                          const MapsToPrevious* mapsB) {
   WideBaselineParams wideParams = params.wideBaseline;
   if (wideSeed) wideParams.dx = wideParams.dy = wideParams.seedSearchAt320x240;
   const WideBaselineMatcher wide(wideParams);
   // V_A and V_B are matched at once, one task each on OpenCV's threads (one thread: in turn).
   // Each reads the frame's windows and its own reference and writes its own matches, so the
   // matches are the same on any number of threads; a frame's wall clock loses the shorter of
-  // the two (desk clip, 752x480: ~0.27 ms of ~2.5; research README, "Two cores for a frame").
+  // the two (desk clip, 752x480: ~0.16 ms of ~2.2; research README, "Two cores for a frame").
   double msA = 0.0, msB = 0.0;
   cv::parallel_for_(cv::Range(0, 2), [&](const cv::Range& range) {
     for (int task = range.start; task < range.end; ++task) {
       const Clock::time_point began = Clock::now();
       if (task == 0) {
-        m.toA = wide.match(matchable, m.H, prevA, refA.matchable);
+        m.toA = wide.match(matchable, m.H, prevA, refA.matchable, mapsA);
         msA = msSince(began);
       } else {
-        m.toB = wide.match(matchable, m.H, prevB, refB.matchable);
+        m.toB = wide.match(matchable, m.H, prevB, refB.matchable, mapsB);
         msB = msSince(began);
       }
     }
@@ -1257,11 +1260,19 @@ PoseTrackingResult PoseTracker::Impl::process(const cv::Mat& frame) {
   FrameMatches matches;
   if (wasTracking) {
     // The prediction (stage 2, or the seed's) and the frame's correlation windows for stage 3a
-    // at once, one task each on OpenCV's threads (one thread: in turn); neither reads what the
-    // other writes.
+    // at once, one task each on OpenCV's threads (one thread: in turn); frame to frame, also the
+    // local affine maps to the previous frame at each reference's corners (the part of 3a that
+    // does not depend on H; a seed sets the previous matches, so after one they come in 3a).
+    // No task reads what another writes.
     std::optional<MatchableFrame> matchable;
+    MapsToPrevious mapsA, mapsB;
+    const WideBaselineMatcher wide(params.wideBaseline);
+    const int cap = params.wideBaseline.referenceCornersFor(gray.size());
+    const auto mapsCount = [&](const MatchableReference& ref) {
+      return cap > 0 ? static_cast<std::size_t>(cap + cap / 4) : ref.order.size();
+    };
     double msPrediction = 0.0, msWindows = 0.0;
-    cv::parallel_for_(cv::Range(0, 2), [&](const cv::Range& range) {
+    cv::parallel_for_(cv::Range(0, seeded ? 2 : 4), [&](const cv::Range& range) {
       for (int task = range.start; task < range.end; ++task) {
         const Clock::time_point began = Clock::now();
         if (task == 0) {
@@ -1270,15 +1281,20 @@ PoseTrackingResult PoseTracker::Impl::process(const cv::Mat& frame) {
           else
             matchFrameToFrame(corners, scale, matches);
           msPrediction = msSince(began);
-        } else {
+        } else if (task == 1) {
           matchable = MatchableFrame::build(gray, corners.pixels, params.wideBaseline.halfWindow);
           msWindows = msSince(began);
+        } else if (task == 2) {
+          mapsA = wide.mapsToPrevious(prevA, refA.matchable, mapsCount(refA.matchable));
+        } else {
+          mapsB = wide.mapsToPrevious(prevB, refB.matchable, mapsCount(refB.matchable));
         }
       }
     });
     r.timings.push_back({seeded ? "seed" : "frame-to-frame", msPrediction});
     r.timings.push_back({"frame windows", msWindows});
-    matchWideBaseline(*matchable, wideSeed, matches, r);
+    matchWideBaseline(*matchable, wideSeed, matches, r, seeded ? nullptr : &mapsA,
+                      seeded ? nullptr : &mapsB);
   } else {
     t = Clock::now();
     matchInitial(gray, corners, matches);

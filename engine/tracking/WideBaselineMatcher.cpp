@@ -120,6 +120,53 @@ bool fitLocalAffine(cv::Point2d p, const std::vector<cv::Point2f>& src,
   return false;
 }
 
+// The local affine map reference -> previous frame (L^-1 of Eq. 18) at a reference corner, from
+// the previous matches nearest it: those in the smallest square of half-side 40 px * 2^j around
+// it that holds at least 8 of them (or all), the affineNeighbours nearest of those fitted
+// (fitLocalAffine). The square is found by one scan of the previous matches' Chebyshev distances,
+// not by widening queries of a bucket grid (two or three per corner): desk clip, 752x480, ~100
+// previous matches, the stages match A + match B 0.573 -> 0.530 ms per frame (medians, `track
+// --out-csv`). The same sets, so the same matches (fitLocalAffine orders them by distance and
+// index, whatever order they come in).
+class NearestPreviousAffine {
+ public:
+  NearestPreviousAffine(const std::vector<PreviousMatch>& previous,
+                        const MatchableReference& reference, int neighbours)
+      : widest_(4.0 * reference.gray8.cols), neighbours_(neighbours) {
+    for (const PreviousMatch& m : previous) {
+      inReference_.push_back(reference.corners.at(static_cast<std::size_t>(m.referenceCorner)));
+      inPrevious_.push_back(m.previous);
+    }
+    squareReach_.resize(previous.size());
+  }
+
+  std::optional<cv::Matx33d> at(cv::Point2d pA) {
+    for (std::size_t i = 0; i < inReference_.size(); ++i)
+      squareReach_[i] =
+          std::max(std::abs(inReference_[i].x - pA.x), std::abs(inReference_[i].y - pA.y));
+    double half = 40.0;
+    for (;; half *= 2.0) {
+      const auto within = static_cast<std::size_t>(std::count_if(
+          squareReach_.begin(), squareReach_.end(), [half](double r) { return r <= half; }));
+      if (within >= 8 || within == squareReach_.size() || half > widest_) break;
+    }
+    nearby_.clear();
+    for (std::size_t i = 0; i < squareReach_.size(); ++i)
+      if (squareReach_[i] <= half) nearby_.push_back(static_cast<int>(i));
+    cv::Matx33d L;
+    if (!fitLocalAffine(pA, inReference_, inPrevious_, nearby_, neighbours_, L))
+      return std::nullopt;
+    return L;
+  }
+
+ private:
+  std::vector<cv::Point2f> inReference_, inPrevious_;  // the previous matches' pairs
+  std::vector<double> squareReach_;
+  std::vector<int> nearby_;
+  double widest_;
+  int neighbours_;
+};
+
 }  // namespace
 
 bool WideBaselineMatcher::localAffine(cv::Point2d p, const std::vector<PreviousMatch>& previous,
@@ -134,9 +181,22 @@ bool WideBaselineMatcher::localAffine(cv::Point2d p, const std::vector<PreviousM
   return fitLocalAffine(p, src, dst, all, params_.affineNeighbours, L);
 }
 
+MapsToPrevious WideBaselineMatcher::mapsToPrevious(const std::vector<PreviousMatch>& previous,
+                                                   const MatchableReference& reference,
+                                                   std::size_t count) const {
+  MapsToPrevious maps;
+  if (previous.size() < 3 || reference.corners.empty()) return maps;
+  NearestPreviousAffine affine(previous, reference, params_.affineNeighbours);
+  for (std::size_t i = 0; i < std::min(count, reference.order.size()); ++i)
+    maps.atOrder.push_back(
+        affine.at(cv::Point2d(reference.corners[static_cast<std::size_t>(reference.order[i])])));
+  return maps;
+}
+
 std::vector<WideBaselineMatch> WideBaselineMatcher::match(
     const MatchableFrame& frame, const cv::Matx33d& H_kToPrev,
-    const std::vector<PreviousMatch>& previous, const MatchableReference& reference) const {
+    const std::vector<PreviousMatch>& previous, const MatchableReference& reference,
+    const MapsToPrevious* computed) const {
   std::vector<WideBaselineMatch> matches;
   if (previous.size() < 3 || frame.corners.empty() || reference.corners.empty()) return matches;
   if (frame.halfWindow != params_.halfWindow)
@@ -149,35 +209,9 @@ std::vector<WideBaselineMatch> WideBaselineMatcher::match(
   const double scale = resolutionScale(frame.size);
   const double hx = params_.dx * scale, hy = params_.dy * scale;
   const int n = params_.halfWindow, side = 2 * n + 1, count = side * side;
-
-  // Previous matches as pairs (reference pixel -> previous-frame pixel).
-  std::vector<cv::Point2f> inReference, inPrevious;
-  for (const PreviousMatch& m : previous) {
-    inReference.push_back(reference.corners.at(static_cast<std::size_t>(m.referenceCorner)));
-    inPrevious.push_back(m.previous);
-  }
-  // Each reference corner's nearby previous matches: those in the smallest square of half-side
-  // 40 px * 2^j around it that holds at least 8 of them (or all). Found by one scan of the
-  // previous matches per corner (their Chebyshev distances), not by widening queries of a bucket
-  // grid (two or three per corner): desk clip, 752x480, ~100 previous matches, the stages match A
-  // + match B 0.573 -> 0.530 ms per frame (medians, `track --out-csv`). The same sets, so the same
-  // matches (fitLocalAffine orders them by distance and index, whatever order they come in).
-  const double widest = 4.0 * reference.gray8.cols;
-  std::vector<double> squareReach(previous.size());
-  const auto nearbyPrevious = [&](cv::Point2d pA, std::vector<int>& nearby) {
-    for (std::size_t i = 0; i < inReference.size(); ++i)
-      squareReach[i] =
-          std::max(std::abs(inReference[i].x - pA.x), std::abs(inReference[i].y - pA.y));
-    double half = 40.0;
-    for (;; half *= 2.0) {
-      const auto within = static_cast<std::size_t>(std::count_if(
-          squareReach.begin(), squareReach.end(), [half](double r) { return r <= half; }));
-      if (within >= 8 || within == squareReach.size() || half > widest) break;
-    }
-    nearby.clear();
-    for (std::size_t i = 0; i < squareReach.size(); ++i)
-      if (squareReach[i] <= half) nearby.push_back(static_cast<int>(i));
-  };
+  // L^-1 at each corner: given for a prefix of the order (computed while H was), the rest here.
+  NearestPreviousAffine affine(previous, reference, params_.affineNeighbours);
+  const std::size_t given = computed ? computed->atOrder.size() : 0;
 
   // First the reference corners to try, in MatchableReference::order up to the cap, each with
   // its predicted frame position; then their windows, sampled and scored in the order of their
@@ -192,16 +226,16 @@ std::vector<WideBaselineMatch> WideBaselineMatcher::match(
   };
   thread_local std::vector<Tried> tried;
   tried.clear();
-  std::vector<int> candidates, nearby;
+  std::vector<int> candidates;
   const int cap = params_.referenceCornersFor(frame.size);
-  for (const int c : reference.order) {
+  for (std::size_t place = 0; place < reference.order.size(); ++place) {
     if (cap > 0 && static_cast<int>(tried.size()) >= cap) break;
+    const int c = reference.order[place];
     const cv::Point2d pA(reference.corners[static_cast<std::size_t>(c)]);
-    nearbyPrevious(pA, nearby);
-    cv::Matx33d LInverse;  // reference -> previous frame
-    if (!fitLocalAffine(pA, inReference, inPrevious, nearby, params_.affineNeighbours, LInverse))
-      continue;
-    const cv::Matx33d referenceToK = prevToK * LInverse;  // W^-1
+    const std::optional<cv::Matx33d> LInverse =  // reference -> previous frame
+        place < given ? computed->atOrder[place] : affine.at(pA);
+    if (!LInverse) continue;
+    const cv::Matx33d referenceToK = prevToK * *LInverse;  // W^-1
     const cv::Point2d pK = apply(referenceToK, pA);
     if (!(pK.x >= 0 && pK.y >= 0 && pK.x < frame.size.width && pK.y < frame.size.height)) continue;
     tried.push_back({c, referenceToK, referenceToK.inv(), pK});

@@ -66,6 +66,12 @@ struct WideBaselineMatch {
   std::optional<cv::Matx22d> frameToReference{};
 };
 
+// The local affine maps reference -> previous frame (L^-1 of Eq. 18) at the first corners of
+// MatchableReference::order (none where the nearest previous matches are degenerate).
+struct MapsToPrevious {
+  std::vector<std::optional<cv::Matx33d>> atOrder;
+};
+
 class WideBaselineMatcher {
  public:
   explicit WideBaselineMatcher(WideBaselineParams params) : params_(params) {}
@@ -73,9 +79,17 @@ class WideBaselineMatcher {
 
   // H_kToPrev maps current-frame pixels to the previous frame. dx, dy are given at 320x240 and
   // scale with the image size (ResolutionScale.hpp). The frame's half window must be params.n.
+  // `computed`: mapsToPrevious() of the same previous matches and reference, when it was
+  // computed beforehand (the same matches either way).
   std::vector<WideBaselineMatch> match(const MatchableFrame& frame, const cv::Matx33d& H_kToPrev,
                                        const std::vector<PreviousMatch>& previous,
-                                       const MatchableReference& reference) const;
+                                       const MatchableReference& reference,
+                                       const MapsToPrevious* computed = nullptr) const;
+
+  // The part of match() that does not depend on H, for the first `count` corners of the
+  // reference's order: it can run while H is being estimated.
+  MapsToPrevious mapsToPrevious(const std::vector<PreviousMatch>& previous,
+                                const MatchableReference& reference, std::size_t count) const;
 
   // The local affine map (previous frame -> reference) at `p` from the nearest previous matches,
   // as a 3x3 matrix; false when the neighbours are degenerate (collinear) or too few.

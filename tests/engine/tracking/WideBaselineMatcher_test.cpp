@@ -62,6 +62,22 @@ TEST(WideBaselineMatcher, MatchesAcrossAStrongViewpointChange) {
   // the prediction is exact, so nearly every matchable corner should be found and few be wrong.
   EXPECT_GT(correct, static_cast<int>(0.85 * matchable)) << "matchable " << matchable;
   EXPECT_LT(wrong, static_cast<int>(0.05 * matchable) + 1);
+
+  // The maps to the previous frame computed beforehand (all of them, a prefix, none) give the
+  // very same matches: the tracker computes them while H is being estimated.
+  for (const std::size_t count : {ref.order.size(), ref.order.size() / 3, std::size_t{0}}) {
+    const MapsToPrevious maps = matcher.mapsToPrevious(previous, ref, count);
+    ASSERT_EQ(maps.atOrder.size(), count);
+    const std::vector<WideBaselineMatch> again =
+        matcher.match(frameWindows, H, previous, ref, &maps);
+    ASSERT_EQ(again.size(), matches.size()) << "count " << count;
+    for (std::size_t i = 0; i < matches.size(); ++i) {
+      EXPECT_EQ(again[i].frameCorner, matches[i].frameCorner);
+      EXPECT_EQ(again[i].referenceCorner, matches[i].referenceCorner);
+      EXPECT_EQ(again[i].score, matches[i].score);
+      EXPECT_EQ(again[i].predicted, matches[i].predicted);
+    }
+  }
 }
 
 TEST(WideBaselineMatcher, LocalAffineRecoversAnAffineMapAndRejectsCollinearNeighbours) {
