@@ -129,8 +129,8 @@ std::vector<KeypointMeasurement> KeypointMeasurer::measure(const cv::Mat& gray8,
   }
   std::vector<std::optional<PatchAlignment>> aligned(planned.size());
   // One share per thread; an alignment is ~2 us, so a share below ~32 is not worth a task.
-  const int shares = std::clamp(static_cast<int>(planned.size()) / 32, 1,
-                                std::max(1, cv::getNumThreads()));
+  const int shares =
+      std::clamp(static_cast<int>(planned.size()) / 32, 1, std::max(1, cv::getNumThreads()));
   cv::parallel_for_(
       cv::Range(0, static_cast<int>(planned.size())),
       [&](const cv::Range& range) {

@@ -1267,6 +1267,8 @@ PoseTrackingResult PoseTracker::Impl::process(const cv::Mat& frame) {
     std::optional<MatchableFrame> matchable;
     MapsToPrevious mapsA, mapsB;
     const WideBaselineMatcher wide(params.wideBaseline);
+    // The cap counts the corners predicted inside the frame, so the maps cover a quarter more
+    // places of the order than the cap; any further ones come in 3a.
     const int cap = params.wideBaseline.referenceCornersFor(gray.size());
     const auto mapsCount = [&](const MatchableReference& ref) {
       return cap > 0 ? static_cast<std::size_t>(cap + cap / 4) : ref.order.size();

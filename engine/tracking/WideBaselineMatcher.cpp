@@ -209,8 +209,9 @@ std::vector<WideBaselineMatch> WideBaselineMatcher::match(
   const double scale = resolutionScale(frame.size);
   const double hx = params_.dx * scale, hy = params_.dy * scale;
   const int n = params_.halfWindow, side = 2 * n + 1, count = side * side;
-  // L^-1 at each corner: given for a prefix of the order (computed while H was), the rest here.
-  NearestPreviousAffine affine(previous, reference, params_.affineNeighbours);
+  // L^-1 at each corner: given for a prefix of the order (computed while H was), the rest here
+  // (the previous matches' pairs set up only when a corner past the prefix is reached).
+  std::optional<NearestPreviousAffine> affine;
   const std::size_t given = computed ? computed->atOrder.size() : 0;
 
   // First the reference corners to try, in MatchableReference::order up to the cap, each with
@@ -232,8 +233,9 @@ std::vector<WideBaselineMatch> WideBaselineMatcher::match(
     if (cap > 0 && static_cast<int>(tried.size()) >= cap) break;
     const int c = reference.order[place];
     const cv::Point2d pA(reference.corners[static_cast<std::size_t>(c)]);
+    if (place >= given && !affine) affine.emplace(previous, reference, params_.affineNeighbours);
     const std::optional<cv::Matx33d> LInverse =  // reference -> previous frame
-        place < given ? computed->atOrder[place] : affine.at(pA);
+        place < given ? computed->atOrder[place] : affine->at(pA);
     if (!LInverse) continue;
     const cv::Matx33d referenceToK = prevToK * *LInverse;  // W^-1
     const cv::Point2d pK = apply(referenceToK, pA);
