@@ -76,6 +76,10 @@ void PoseParams::fields(Self& p, const Field& field) {
           "not lost");
   field("verify_unsure_share", p.verifyUnsureShare, Range{0.0, 1.0})
       .help("The share of checked points an unsure pose needs (see verify_unsure_points)");
+  field("verify_unsure_every_frames", p.verifyUnsureEveryFrames, Range{1, 100000})
+      .help(
+          "An unsure pose tracked on asks the relocaliser at most every n-th frame of a track; "
+          "1: every frame");
   field("predicted_error_scale", p.predictedErrorScale, Range{1e-6, 1e6})
       .help("Calibration factor of the predicted overlay error (measured on real clips)");
   field("max_predicted_error_px", p.maxPredictedErrorPx, Range{0.0, 1e6})

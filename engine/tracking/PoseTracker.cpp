@@ -250,6 +250,9 @@ struct PoseTracker::Impl {
   std::unique_ptr<KeypointMeasurer> keypointMeasurer;
   std::vector<PoseTracker::VerificationKeypoint> verificationKeypoints[2];  // in A, in B
   PoseTracker::PoseConfirmation confirmation;  // a second opinion when the check says no
+  // Tracked frames since a second opinion kept an unsure pose tracked on, while the track has not
+  // been broken (a loss, a seed, a reset); -1: none stands (pose.verify_unsure_every_frames).
+  int framesSinceOpinion = -1;
   // Repeated texture within reach of a start's search (the narrow-baseline window, the seed
   // search) can fool a start by a whole period; a look-alike correlating above the matcher's
   // acceptance there makes a corner repeated. Not the whole image: generic corners (an L, a
@@ -452,6 +455,7 @@ struct PoseTracker::Impl {
     r.T_Ak.reset();
     state = TrackingState::Lost;
     lastTAk.reset();
+    framesSinceOpinion = -1;
     regularizer->reset();
     prevA.clear();
     prevB.clear();
@@ -477,6 +481,7 @@ struct PoseTracker::Impl {
     seedPose = worldToCamera;
     tightSeed = tight;
     lastTAk.reset();
+    framesSinceOpinion = -1;
     regularizer->reset();
   }
 
@@ -1048,12 +1053,21 @@ bool PoseTracker::Impl::verifyPose(const cv::Mat& frame, const cv::Mat& gray, co
   if (check.passed()) return true;
   std::string why = check.reason;
   if (confirmation) {
+    const bool unsure = check.verdict == PoseCheck::Verdict::Unsure;
+    // An unbroken track whose last unsure pose the second opinion kept: that opinion stands for
+    // the next pose.verify_unsure_every_frames - 1 frames (no relocaliser run, no "confirm").
+    if (unsure && trackedOn && framesSinceOpinion >= 0 &&
+        framesSinceOpinion < params.pose.verifyUnsureEveryFrames) {
+      r.confirmedBySecondOpinion = true;
+      return true;
+    }
     t = Clock::now();
-    const std::optional<std::string> refused = confirmation(
-        frame, {TAk * map.T_A, check.verdict == PoseCheck::Verdict::Unsure, trackedOn});
+    const std::optional<std::string> refused =
+        confirmation(frame, {TAk * map.T_A, unsure, trackedOn});
     r.timings.push_back({"confirm", msSince(t)});
     if (!refused) {
       r.confirmedBySecondOpinion = true;
+      if (unsure && trackedOn) framesSinceOpinion = 0;
       return true;
     }
     why += "; " + *refused;
@@ -1413,6 +1427,7 @@ PoseTrackingResult PoseTracker::Impl::process(const cv::Mat& frame) {
   state = TrackingState::Tracking;
   r.T_Ak = TAk;
   lastTAk = TAk;
+  if (framesSinceOpinion >= 0) ++framesSinceOpinion;
   r.worldToCamera = TAk * map.T_A;
   r.covariance = est->covariance;
   for (const ThreeViewMatch& m : inliers->measurements.threeView)
@@ -1478,6 +1493,7 @@ void PoseTracker::forgetLearnedReliability() {
 }
 void PoseTracker::reset() {
   impl_->seedPose.reset();
+  impl_->framesSinceOpinion = -1;
   impl_->tightSeed = false;
   impl_->lastTAk.reset();
   impl_->state = TrackingState::Initialising;

@@ -32,6 +32,8 @@ TEST(PoseParams, DefaultsAndRoundTrip) {
   EXPECT_DOUBLE_EQ(in.maxPredictedErrorPx, 2.0);  // chosen on the real clips
   in.predictedErrorScale = 1.5;
   in.maxPredictedErrorPx = 0.0;
+  EXPECT_EQ(in.verifyUnsureEveryFrames, 15);  // ~3 ms per frame of 43-60 ms searches (README)
+  in.verifyUnsureEveryFrames = 1;
   PoseParams out;
   roundTrip(in, out);
   EXPECT_EQ(out.estimator, PoseEstimatorKind::Standard);
@@ -46,6 +48,7 @@ TEST(PoseParams, DefaultsAndRoundTrip) {
   EXPECT_DOUBLE_EQ(out.reliabilityPriorObservations, 0.0);
   EXPECT_DOUBLE_EQ(out.predictedErrorScale, 1.5);
   EXPECT_DOUBLE_EQ(out.maxPredictedErrorPx, 0.0);
+  EXPECT_EQ(out.verifyUnsureEveryFrames, 1);
 }
 
 TEST(PoseParams, EveryBadFieldIsNamed) {
@@ -67,6 +70,7 @@ TEST(PoseParams, EveryBadFieldIsNamed) {
       {"pose.predicted_error_scale", [&](PoseParams& p) { p.predictedErrorScale = nan; }},
       {"pose.max_predicted_error_px", [](PoseParams& p) { p.maxPredictedErrorPx = -1.0; }},
       {"pose.max_predicted_error_px", [&](PoseParams& p) { p.maxPredictedErrorPx = nan; }},
+      {"pose.verify_unsure_every_frames", [](PoseParams& p) { p.verifyUnsureEveryFrames = 0; }},
   };
   for (const auto& [field, mutate] : cases) {
     PoseParams p;
