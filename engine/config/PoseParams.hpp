@@ -89,11 +89,12 @@ struct PoseParams : ParamSection<PoseParams> {
   double verifyUnsureShare = 0.12;
   // While a track goes on unbroken, an unsure pose tracked on from the last frame is put to the
   // relocaliser at most every this many frames; between, the last opinion that kept one stands
-  // (1: every frame). A search with its verification costs 43-60 ms on the desk clip's far views,
-  // where every frame was unsure (28 of 400 frames in order, the mean frame 6.95 ms against a
-  // median of 2.5); once in 15 frames is ~3 ms per frame, the rate relocalisation.budget_ms_per_
-  // frame allows a lost tracker (10% of a core at 30 fps). Poses that are seeds or follow a jump
-  // are always asked: the opinion guards those against look-alikes.
+  // (1: every frame). On the desk clip's far views every frame was unsure: 28 of 400 frames in
+  // order asked, 43-60 ms each on the full-size frame (the mean frame 6.95 ms against a median of
+  // 2.5); now 5, on the reduced frame, ~36 ms each. Once in 15 frames is 2-3 ms per frame, the
+  // rate relocalisation.budget_ms_per_frame allows a lost tracker (10% of a core at 30 fps).
+  // Poses that are seeds or follow a jump are always asked: the opinion guards those against
+  // look-alikes.
   int verifyUnsureEveryFrames = 15;
   // Predicted overlay error (PredictedOverlayError.hpp): the RMS image displacement of the
   // overlay's points under Omega_k, rescaled a posteriori by the frame's observed residuals
