@@ -20,15 +20,16 @@ fi
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 clips="desk-chessboard:0,40 desk-chessboard:300,340 shelf-apriltags:0,60 visp-desk-apriltags:0,40"
+map_name() { local refs="${1#*:}"; echo "${1%%:*}-${refs/,/-}"; }  # desk-chessboard-0-40
 for clip in $clips; do
-  folder="${clip%%:*}" refs="${clip#*:}"
-  "$this" prepare --input "$data/$folder/frames" --ref-frames "$refs" \
+  folder="${clip%%:*}"
+  "$this" prepare --input "$data/$folder/frames" --ref-frames "${clip#*:}" \
     --poses "$data/$folder/groundtruth.txt" --camera "$data/$folder/camera.yml" \
-    --out "$work/$folder-${refs/,/-}.map" >/dev/null 2>&1
+    --out "$work/$(map_name "$clip").map" >/dev/null 2>&1
 done
 for run in $(seq "$runs"); do
   for clip in $clips; do
-    folder="${clip%%:*}" refs="${clip#*:}" name="${clip%%:*}-${refs/,/-}"
+    folder="${clip%%:*}" name="$(map_name "$clip")"
     for build in this other; do
       binary="$this"
       [ "$build" = other ] && binary="$other"
@@ -39,7 +40,7 @@ for run in $(seq "$runs"); do
   echo "run $run of $runs done" >&2
 done
 python3 - "$work" $clips <<'PY'
-import csv, glob, os, statistics, sys
+import csv, glob, statistics, sys
 work = sys.argv[1]
 def summary(path):
     rows = list(csv.DictReader(open(path)))
